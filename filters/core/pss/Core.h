@@ -1,0 +1,16 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Core.h
+ * @brief Umbrella header of the VTK-free PointSetSurfaces core.
+ */
+#pragma once
+
+#include "pss/ExtremalSurface.h"
+#include "pss/Kernel.h"
+#include "pss/Parallel.h"
+#include "pss/PointIndex.h"
+#include "pss/Quadrature.h"
+#include "pss/SurfaceDefinition.h"
+#include "pss/SyntheticClouds.h"
+#include "pss/Types.h"
+#include "pss/Variants.h"

@@ -1,0 +1,335 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "pss/ExtremalSurface.h"
+
+#include "pss/Kernel.h"
+#include "pss/Parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace pss
+{
+
+Orientation Orientation::awayFromCentroid(const PointIndex& index)
+{
+  Orientation o;
+  o.rule = Rule::AwayFromPoint;
+  o.reference = index.centroid();
+  return o;
+}
+
+Vec3 Orientation::apply(const Vec3& n, const Vec3& x) const
+{
+  const double side = rule == Rule::AwayFromPoint ? n.dot(x - reference) : n.dot(reference);
+  return side < 0.0 ? Vec3(-n) : n;
+}
+
+namespace
+{
+
+// A slope sample kept as mantissa and log-scale, so Levin's underflowing energies still compare.
+struct ScaledSlope
+{
+  double t = 0.0;
+  double mantissa = 0.0;
+  double logScale = 0.0;
+};
+
+// The two mantissas brought to the larger of their scales (the smaller may underflow to zero,
+// never overflow).
+void commonScale(const ScaledSlope& a, const ScaledSlope& b, double& fa, double& fb)
+{
+  const double l = std::max(a.logScale, b.logScale);
+  fa = a.mantissa * std::exp(a.logScale - l);
+  fb = b.mantissa * std::exp(b.logScale - l);
+}
+
+// Second derivative of t -> e(x + t n, n) at 0 by a central difference of the analytic slope,
+// expressed at the scale of @p at (multiply by exp(at.logScale) for the true value).
+double scaledCurvature(const SurfaceDefinition& s, const Vec3& x, const Vec3& n, const LineSample& at)
+{
+  const double eps = 1e-4 * s.h();
+  const LineSample plus = s.lineSample(x + eps * n, n);
+  const LineSample minus = s.lineSample(x - eps * n, n);
+  const double sp = plus.slope * std::exp(plus.logScale - at.logScale);
+  const double sm = minus.slope * std::exp(minus.logScale - at.logScale);
+  return (sp - sm) / (2.0 * eps);
+}
+
+ExtremumType typeFromCurvature(double curvature)
+{
+  if (curvature > 0.0)
+  {
+    return ExtremumType::Minimum;
+  }
+  return curvature < 0.0 ? ExtremumType::Maximum : ExtremumType::None;
+}
+
+} // namespace
+
+ImplicitSample evaluateImplicit(const SurfaceDefinition& s, const Vec3& xIn, const Orientation& o)
+{
+  ImplicitSample out;
+  if (!isFinite(xIn))
+  {
+    return out;
+  }
+  const Vec3 x = s.index().restrict(xIn);
+  out.direction = s.direction(x);
+  if (!out.direction.n.allFinite() || out.direction.n.squaredNorm() == 0.0)
+  {
+    out.direction.defined = false;
+    return out;
+  }
+  const Vec3 n = o.apply(out.direction.n, x);
+  out.direction.n = n;
+  const LineSample at = s.lineSample(x, n);
+  const double scale = std::exp(at.logScale);
+  out.energy = at.value * scale;
+  out.g = at.slope * scale;
+  const double curvature = scaledCurvature(s, x, n, at);
+  out.curvature = curvature * scale;
+  out.type = out.direction.defined ? typeFromCurvature(curvature) : ExtremumType::None;
+  return out;
+}
+
+LineExtremum nearestExtremumOnLine(
+  const SurfaceDefinition& s, const Vec3& x, const Vec3& a, bool seekMaximum, double maxTravel)
+{
+  LineExtremum out;
+  // Seeking a maximum of e is seeking a minimum of -e: flip the slope's sign once, here.
+  const double sign = seekMaximum ? -1.0 : 1.0;
+  const ExtremumType wanted = seekMaximum ? ExtremumType::Maximum : ExtremumType::Minimum;
+  auto sample = [&](double t) {
+    const LineSample ls = s.lineSample(x + t * a, a);
+    ScaledSlope out;
+    out.t = t;
+    out.mantissa = sign * ls.slope;
+    out.logScale = ls.logScale;
+    return std::make_pair(out, ls.nearestSqDist);
+  };
+
+  auto [start, startSqDist] = sample(0.0);
+  if (!std::isfinite(start.mantissa))
+  {
+    return out;
+  }
+  double travel = 1.0;
+  if (start.mantissa > 0.0)
+  {
+    travel = -1.0;
+  }
+  else if (start.mantissa == 0.0)
+  {
+    const LineSample at = s.lineSample(x, a);
+    if (sign * scaledCurvature(s, x, a, at) > 0.0)
+    {
+      out.found = true;
+      out.type = wanted;
+      return out;
+    }
+  }
+
+  // March downhill (of sign * e) until the slope turns. Steps grow geometrically from 0.02 h but
+  // stay below half the distance to the cloud (and 0.25 h near it): the energy has no structure
+  // finer than that, so no pair of extrema hides inside one step.
+  const double h = s.h();
+  double step = 0.02 * h;
+  ScaledSlope previous = start;
+  double nearestSq = startSqDist;
+  ScaledSlope next;
+  bool bracketed = false;
+  while (std::abs(previous.t) < maxTravel)
+  {
+    const double cap = std::max(0.25 * h, 0.5 * std::sqrt(nearestSq));
+    step = std::min(step, cap);
+    double nextSqDist = 0.0;
+    std::tie(next, nextSqDist) = sample(previous.t + travel * step);
+    if (!std::isfinite(next.mantissa))
+    {
+      return out;
+    }
+    if (travel * next.mantissa >= 0.0)
+    {
+      bracketed = true;
+      break;
+    }
+    previous = next;
+    nearestSq = nextSqDist;
+    step *= 1.6;
+  }
+  if (!bracketed)
+  {
+    return out;
+  }
+
+  // Illinois false position on the slope inside [previous, next]: superlinear, and it keeps the
+  // bracket, so it cannot wander to another extremum.
+  ScaledSlope lo = previous; // travel * slope < 0
+  ScaledSlope hi = next;     // travel * slope >= 0
+  const double tol = 1e-12 * h;
+  int lastMoved = 0;
+  double root = hi.t;
+  for (int iter = 0; iter < 200 && std::abs(hi.t - lo.t) > tol && hi.mantissa != 0.0; ++iter)
+  {
+    double flo = 0.0;
+    double fhi = 0.0;
+    commonScale(lo, hi, flo, fhi);
+    double t = (lo.t * fhi - hi.t * flo) / (fhi - flo);
+    const double left = std::min(lo.t, hi.t);
+    const double right = std::max(lo.t, hi.t);
+    if (!(t > left && t < right))
+    {
+      t = 0.5 * (lo.t + hi.t);
+    }
+    const ScaledSlope mid = sample(t).first;
+    if (!std::isfinite(mid.mantissa))
+    {
+      return out;
+    }
+    root = t;
+    if (travel * mid.mantissa >= 0.0)
+    {
+      hi = mid;
+      if (lastMoved == 1)
+      {
+        lo.mantissa *= 0.5;
+      }
+      lastMoved = 1;
+    }
+    else
+    {
+      lo = mid;
+      if (lastMoved == -1)
+      {
+        hi.mantissa *= 0.5;
+      }
+      lastMoved = -1;
+    }
+  }
+  if (hi.mantissa == 0.0)
+  {
+    root = hi.t;
+  }
+  if (std::abs(root) > maxTravel)
+  {
+    return out;
+  }
+  out.found = true;
+  out.t = root;
+  out.type = wanted;
+  return out;
+}
+
+void ProjectionOptions::validate() const
+{
+  if (maxIterations < 1)
+  {
+    throw std::invalid_argument("MaxIterations must be at least 1, got " + std::to_string(maxIterations));
+  }
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+  {
+    throw std::invalid_argument("the tolerance must be a positive finite multiple of h");
+  }
+  if (!(maxTravel > 0.0) || !std::isfinite(maxTravel))
+  {
+    throw std::invalid_argument("the maximum travel must be a positive finite multiple of h");
+  }
+}
+
+ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const ProjectionOptions& opt)
+{
+  ProjectionResult res;
+  res.start = startIn;
+  res.point = startIn;
+  if (!isFinite(startIn))
+  {
+    res.reason = StopReason::InvalidInput;
+    return res;
+  }
+  const PointIndex& index = s.index();
+  Vec3 x = index.restrict(startIn);
+  res.start = x;
+  if (opt.recordPath)
+  {
+    res.path.push_back(x);
+  }
+  const double h = s.h();
+  Direction dir = s.direction(x);
+  res.reason = StopReason::MaxIterations;
+  ExtremumType lastType = ExtremumType::None;
+  for (int it = 0;; ++it)
+  {
+    if (!dir.defined)
+    {
+      res.reason = StopReason::UndefinedDirection;
+      break;
+    }
+    if (it == opt.maxIterations)
+    {
+      break;
+    }
+    double t = 0.0;
+    if (opt.procedure == Procedure::Plane)
+    {
+      // Move x onto the plane through c(x) with normal n(x): the zero set of <n, x - c>.
+      thread_local Neighbourhood nb;
+      gatherNeighbourhood(index, s.parameters(), x, nb);
+      t = dir.n.dot(centroidOffset(nb));
+    }
+    else
+    {
+      const LineExtremum le = nearestExtremumOnLine(s, x, dir.n, opt.seekMaxima, opt.maxTravel * h);
+      if (!le.found)
+      {
+        res.reason = StopReason::NoExtremum;
+        break;
+      }
+      t = le.t;
+      lastType = le.type;
+    }
+    x = index.restrict(x + t * dir.n);
+    res.iterations = it + 1;
+    res.lastStep = std::abs(t);
+    if (opt.recordPath)
+    {
+      res.path.push_back(x);
+    }
+    dir = s.direction(x);
+    if (std::abs(t) < opt.tolerance * h)
+    {
+      res.reason = dir.defined ? StopReason::Converged : StopReason::UndefinedDirection;
+      break;
+    }
+  }
+  res.point = x;
+  res.direction = dir;
+  res.converged = res.reason == StopReason::Converged;
+  if (dir.n.allFinite() && dir.n.squaredNorm() > 0.0)
+  {
+    const LineSample at = s.lineSample(x, dir.n);
+    res.energy = at.trueValue();
+    res.type = opt.procedure == Procedure::Extremal && res.converged
+      ? lastType
+      : typeFromCurvature(scaledCurvature(s, x, dir.n, at));
+  }
+  return res;
+}
+
+std::vector<ProjectionResult> projectAll(
+  const SurfaceDefinition& s, const std::vector<Vec3>& starts, const ProjectionOptions& opt, int threads)
+{
+  opt.validate();
+  std::vector<ProjectionResult> results(starts.size());
+  parallelFor(starts.size(), threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      results[i] = project(s, starts[i], opt);
+    }
+  });
+  return results;
+}
+
+} // namespace pss

@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file ExtremalSurface.h
+ * @brief What any SurfaceDefinition gives: the implicit function g of Eq. 2, the nearest
+ *        extremum along a line, projection onto the extremal surface (Definition 1) or onto the
+ *        maxima of Figures 9 and 10, and the centre-of-mass "plane" procedure.
+ */
+#pragma once
+
+#include "pss/SurfaceDefinition.h"
+#include "pss/Types.h"
+
+#include <functional>
+#include <vector>
+
+namespace pss
+{
+
+/**
+ * @brief How an unoriented n is turned into a vector (for g's sign and for stream tracers).
+ *
+ * AwayFromPoint: n . (x - reference) >= 0, i.e. n points away from a reference point (by default
+ * the cloud's centroid). AlongDirection: n . reference >= 0. Both are continuous wherever n is,
+ * except on the set where n is orthogonal to (x - reference), respectively to reference.
+ */
+struct Orientation
+{
+  enum class Rule
+  {
+    AwayFromPoint,
+    AlongDirection
+  };
+  Rule rule = Rule::AwayFromPoint;
+  Vec3 reference = Vec3::Zero();
+
+  /// The rule used when nothing is said: away from the centroid of @p index.
+  static Orientation awayFromCentroid(const PointIndex& index);
+  /// n or -n, following the rule at x (n itself when the rule is undecided, i.e. exactly zero).
+  Vec3 apply(const Vec3& n, const Vec3& x) const;
+};
+
+/// Everything the field-sampling and classification code wants to know at one point x.
+struct ImplicitSample
+{
+  Direction direction;                 ///< n(x), oriented by the Orientation given
+  double energy = 0.0;                 ///< e(x, n(x)) at true scale
+  double g = 0.0;                      ///< Eq. 2: n(x) . grad_y e(y, n(x)) at y = x (true scale)
+  double curvature = 0.0;              ///< d2/dt2 e(x + t n, n) at t = 0, same scale as energy
+  ExtremumType type = ExtremumType::None; ///< Minimum if curvature > 0, Maximum if < 0
+};
+
+/**
+ * g(x) and the sign of the second derivative along n(x). The second derivative is a central
+ * difference (step 1e-4 h) of the analytic slope. When n(x) is undefined, g and curvature are 0
+ * and type is None (the flag is direction.defined).
+ */
+ImplicitSample evaluateImplicit(const SurfaceDefinition& s, const Vec3& x, const Orientation& o);
+
+/// Result of searching along a line for the nearest local extremum of e.
+struct LineExtremum
+{
+  bool found = false;
+  double t = 0.0;                        ///< signed offset along the line direction
+  ExtremumType type = ExtremumType::None;
+};
+
+/**
+ * Nearest local minimum (or maximum, with @p seekMaximum) of t -> e(x + t a, a) to t = 0.
+ * Walks downhill (uphill for maxima) from t = 0 with growing steps, never longer than half the
+ * distance to the cloud (the energy varies on that scale), until the slope changes sign, then
+ * refines the root of the slope by bracketed secant/bisection to 1e-12 h. Gives up beyond
+ * @p maxTravel (absolute distance).
+ */
+LineExtremum nearestExtremumOnLine(
+  const SurfaceDefinition& s, const Vec3& x, const Vec3& a, bool seekMaximum, double maxTravel);
+
+enum class Procedure : int
+{
+  Extremal = 0, ///< move to the nearest extremum of e along n(x), repeat (Definition 1)
+  Plane = 1     ///< x <- x - <n(x), x - c(x)> n(x), repeat (the centre-of-mass fast path)
+};
+
+struct ProjectionOptions
+{
+  Procedure procedure = Procedure::Extremal;
+  bool seekMaxima = false;   ///< converge to maxima of e along n (green curves, Figs. 9, 10)
+  int maxIterations = 100;   ///< >= 1
+  double tolerance = 1e-6;   ///< convergence when a step is below tolerance * h
+  double maxTravel = 1000.0; ///< longest line search, in units of h
+  bool recordPath = false;   ///< keep every iterate in ProjectionResult::path
+
+  void validate() const; ///< throws std::invalid_argument
+};
+
+struct ProjectionResult
+{
+  Vec3 start = Vec3::Zero();
+  Vec3 point = Vec3::Zero();          ///< where the projection stopped (== start on InvalidInput)
+  Direction direction;                ///< n at the final point
+  double energy = 0.0;                ///< e(point, n(point)) at true scale
+  int iterations = 0;
+  bool converged = false;
+  double lastStep = 0.0;              ///< length of the last step taken
+  StopReason reason = StopReason::MaxIterations;
+  ExtremumType type = ExtremumType::None; ///< kind of extremum at the final point
+  std::vector<Vec3> path;             ///< iterates, start first (only with recordPath)
+
+  double displacement() const { return (point - start).norm(); }
+};
+
+/// Projects one start point. Never throws for bad points: reports them in the result.
+ProjectionResult project(const SurfaceDefinition& s, const Vec3& start, const ProjectionOptions& opt);
+
+/// Projects many start points on @p threads threads (0 = all cores). Results do not depend on
+/// the thread count: every point is computed independently and in the same way.
+std::vector<ProjectionResult> projectAll(const SurfaceDefinition& s, const std::vector<Vec3>& starts,
+  const ProjectionOptions& opt, int threads = 0);
+
+} // namespace pss

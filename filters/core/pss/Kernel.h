@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Kernel.h
+ * @brief Gaussian weights with shifted exponents, the neighbourhood that carries them, and the
+ *        weighted quantities every surface definition is built from.
+ *
+ * theta(y, p) = exp(-|y - p|^2 / h^2) underflows a few dozen h away from the cloud, which would
+ * make every normalized quantity 0/0. A Neighbourhood therefore stores
+ *   w_i = exp(-(d_i^2 - dmin^2) / h^2)   (the nearest point has w = 1)
+ * and the common factor exp(-dmin^2 / h^2) separately as a log-scale. Normalized weights
+ * theta_N = w_i / sum_j w_j are then exact at any distance, and unnormalized ones are
+ * exp(logScale) * w_i (which may underflow to zero, never to NaN).
+ *
+ * Truncation: only points with d_i^2 < dmin^2 + (cutoff * h)^2 are gathered, i.e. points whose
+ * weight relative to the nearest one is at least exp(-cutoff^2) (cutoff 3: 1.2e-4 per point).
+ * The cut is relative to the nearest point, not a fixed radius around y, so a query 100 h away
+ * still sees the points that dominate it.
+ *
+ * Offsets are stored as p_i - y, with the query as local origin, so covariances of clouds with
+ * coordinates around 1e6 do not lose their digits.
+ */
+#pragma once
+
+#include "pss/PointIndex.h"
+#include "pss/Types.h"
+
+#include <vector>
+
+namespace pss
+{
+
+/// Parameters shared by every surface definition.
+struct SurfaceParameters
+{
+  double h = 1.0;             ///< Gaussian scale (theta = exp(-d^2/h^2)); must be > 0 and finite
+  double cutoff = 3.0;        ///< truncation, in units of h, beyond the nearest point (see above)
+  int quadratureOrder = 6;    ///< Gauss-Hermite nodes per in-plane axis for e_I (1..32)
+  int integrandPower = 2;     ///< e_I integrates delta^power; the paper uses 2 (appendix: 1 is blind)
+  double minStability = 1e-5; ///< n(x) counts as undefined below this stability (see README)
+
+  /// Throws std::invalid_argument with a readable message when a value is out of range.
+  void validate() const;
+};
+
+/// The cloud points that influence a query point y, with their shifted Gaussian weights.
+struct Neighbourhood
+{
+  Vec3 origin = Vec3::Zero();       ///< the query point y
+  double minSqDist = 0.0;           ///< squared distance from y to the nearest point
+  double invH2 = 1.0;               ///< 1 / h^2
+  std::vector<Vec3> offsets;        ///< p_i - y
+  std::vector<double> sqDist;       ///< |p_i - y|^2
+  std::vector<double> weight;       ///< exp(-(|p_i - y|^2 - minSqDist) / h^2), in (0, 1]
+  double weightSum = 0.0;           ///< sum of weight (>= 1 whenever the cloud is not empty)
+
+  std::size_t size() const { return offsets.size(); }
+  /// log of the factor that turns weight into the true Gaussian theta(y, p_i).
+  double logScale() const { return -minSqDist * invH2; }
+};
+
+/// Fills @p nb with the neighbourhood of @p y (see the file comment). Requires a non-empty index.
+void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y,
+  Neighbourhood& nb);
+
+/// c(y) - y, where c(y) = sum_i theta_N(y, p_i) p_i is the weighted centre of mass.
+Vec3 centroidOffset(const Neighbourhood& nb);
+
+/// sum_i w_i (p_i - y)(p_i - y)^T (shifted weights): Levin's C(y), up to the factor exp(logScale).
+Mat3 covarianceAboutQuery(const Neighbourhood& nb);
+
+/// sum_i theta_N(y, p_i)(p_i - c)(p_i - c)^T: the centre-of-mass covariance (Sec. 5).
+Mat3 covarianceAboutCentroid(const Neighbourhood& nb);
+
+/**
+ * Eigenvector of the smallest eigenvalue of a symmetric positive semi-definite matrix, with the
+ * stability (lambda_1 - lambda_0) / (lambda_1 + lambda_0). In 2D only the xy block is used.
+ */
+Direction smallestEigenDirection(const Mat3& C, int dimension, double minStability);
+
+/// delta(y) = sum_i theta_N(y, p_i) |y - p_i|^2, the approximate squared distance (Sec. 5).
+double approximateSqDistance(const Neighbourhood& nb);
+
+/**
+ * grad delta(y). Differentiating the normalized weights gives
+ *   grad delta = -2 (c - y) + (2 / h^2) sum_i theta_N_i (p_i - y)(d_i^2 - delta).
+ */
+Vec3 approximateSqDistanceGradient(const Neighbourhood& nb, double delta);
+
+/// delta(y) and its gradient evaluated straight from the index (convenience for callers and tests).
+class DistanceField
+{
+public:
+  DistanceField(const PointIndex& index, const SurfaceParameters& params);
+  double delta(const Vec3& y) const;
+  /// delta and grad delta at once (the gradient needs delta anyway); optionally the squared
+  /// distance from y to the nearest cloud point.
+  double deltaAndGradient(const Vec3& y, Vec3& gradient, double* nearestSqDist = nullptr) const;
+
+private:
+  const PointIndex& Index;
+  SurfaceParameters Params;
+};
+
+} // namespace pss

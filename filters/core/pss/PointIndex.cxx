@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "pss/PointIndex.h"
+
+#include <nanoflann.hpp>
+
+#include <cmath>
+#include <stdexcept>
+#include <variant>
+
+namespace pss
+{
+
+namespace
+{
+
+// nanoflann reads coordinates through this adaptor; in 2D it simply never asks for z.
+struct CloudAdaptor
+{
+  const std::vector<Vec3>* points = nullptr;
+  std::size_t kdtree_get_point_count() const { return points->size(); }
+  double kdtree_get_pt(std::size_t i, std::size_t dim) const { return (*points)[i][static_cast<int>(dim)]; }
+  template <class BBox>
+  bool kdtree_get_bbox(BBox&) const
+  {
+    return false;
+  }
+};
+
+template <int D>
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
+  CloudAdaptor, D, std::uint32_t>;
+
+} // namespace
+
+struct PointIndex::Tree
+{
+  CloudAdaptor adaptor;
+  std::variant<std::unique_ptr<KdTree<2>>, std::unique_ptr<KdTree<3>>> tree;
+
+  template <class Fn>
+  void visit(Fn&& fn) const
+  {
+    std::visit([&](const auto& t) { fn(*t); }, tree);
+  }
+};
+
+bool isFinite(const Vec3& x)
+{
+  return std::isfinite(x.x()) && std::isfinite(x.y()) && std::isfinite(x.z());
+}
+
+PointIndex::PointIndex(const std::vector<Vec3>& points, int dimension)
+  : Dimension(dimension)
+{
+  if (dimension != 2 && dimension != 3)
+  {
+    throw std::invalid_argument("PointIndex: dimension must be 2 or 3, got " + std::to_string(dimension));
+  }
+  if (points.size() >= std::size_t(UINT32_MAX))
+  {
+    throw std::invalid_argument("PointIndex: more than 2^32 - 1 points are not supported");
+  }
+  Points.reserve(points.size());
+  OriginalIds.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    if (!isFinite(points[i]))
+    {
+      ++Skipped;
+      continue;
+    }
+    Points.push_back(restrict(points[i]));
+    OriginalIds.push_back(i);
+  }
+  if (!Points.empty())
+  {
+    Vec3 sum = Vec3::Zero();
+    BoundsMin = BoundsMax = Points.front();
+    for (const Vec3& p : Points)
+    {
+      sum += p;
+      BoundsMin = BoundsMin.cwiseMin(p);
+      BoundsMax = BoundsMax.cwiseMax(p);
+    }
+    Centroid = sum / static_cast<double>(Points.size());
+  }
+
+  Impl = std::make_unique<Tree>();
+  Impl->adaptor.points = &Points;
+  const nanoflann::KDTreeSingleIndexAdaptorParams params(16);
+  if (Dimension == 2)
+  {
+    Impl->tree = std::make_unique<KdTree<2>>(2, Impl->adaptor, params);
+  }
+  else
+  {
+    Impl->tree = std::make_unique<KdTree<3>>(3, Impl->adaptor, params);
+  }
+}
+
+PointIndex::~PointIndex() = default;
+
+Vec3 PointIndex::restrict(const Vec3& x) const
+{
+  return Dimension == 2 ? Vec3(x.x(), x.y(), 0.0) : x;
+}
+
+std::pair<std::size_t, double> PointIndex::nearest(const Vec3& x) const
+{
+  if (Points.empty())
+  {
+    throw std::logic_error("PointIndex::nearest on an empty index");
+  }
+  const Vec3 q = restrict(x);
+  std::uint32_t index = 0;
+  double sqDist = 0.0;
+  Impl->visit([&](const auto& tree) {
+    nanoflann::KNNResultSet<double, std::uint32_t> result(1);
+    result.init(&index, &sqDist);
+    tree.findNeighbors(result, q.data(), nanoflann::SearchParams());
+  });
+  return { index, sqDist };
+}
+
+void PointIndex::kNearest(
+  const Vec3& x, std::size_t k, std::vector<std::pair<std::uint32_t, double>>& out) const
+{
+  out.clear();
+  k = std::min(k, Points.size());
+  if (k == 0)
+  {
+    return;
+  }
+  const Vec3 q = restrict(x);
+  std::vector<std::uint32_t> ids(k);
+  std::vector<double> d2(k);
+  std::size_t found = 0;
+  Impl->visit([&](const auto& tree) { found = tree.knnSearch(q.data(), k, ids.data(), d2.data()); });
+  out.reserve(found);
+  for (std::size_t i = 0; i < found; ++i)
+  {
+    out.emplace_back(ids[i], d2[i]);
+  }
+}
+
+void PointIndex::withinSqRadius(
+  const Vec3& x, double sqRadius, std::vector<std::pair<std::uint32_t, double>>& out) const
+{
+  out.clear();
+  if (Points.empty())
+  {
+    return;
+  }
+  const Vec3 q = restrict(x);
+  nanoflann::SearchParams params;
+  params.sorted = false;
+  Impl->visit([&](const auto& tree) { tree.radiusSearch(q.data(), sqRadius, out, params); });
+}
+
+} // namespace pss

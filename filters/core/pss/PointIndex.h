@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file PointIndex.h
+ * @brief A k-d tree (nanoflann) over a point cloud in 2D (xy-plane) or 3D.
+ *
+ * Built once, then queried concurrently from any number of threads: every query is const and
+ * keeps its scratch space on the caller's side.
+ *
+ * Points with a NaN or infinite coordinate are not indexed; skippedCount() says how many were
+ * dropped and originalId() maps an indexed point back to its position in the input, so nothing
+ * is lost silently. In 2D every z coordinate (of points and of queries) is taken as zero.
+ */
+#pragma once
+
+#include "pss/Types.h"
+
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace pss
+{
+
+class PointIndex
+{
+public:
+  /// @param points the cloud; @param dimension 2 (xy-plane) or 3. Throws std::invalid_argument
+  /// for any other dimension.
+  PointIndex(const std::vector<Vec3>& points, int dimension);
+  ~PointIndex();
+  PointIndex(const PointIndex&) = delete;
+  PointIndex& operator=(const PointIndex&) = delete;
+
+  int dimension() const { return Dimension; }
+  std::size_t size() const { return Points.size(); }
+  bool empty() const { return Points.empty(); }
+  /// Number of input points dropped because a coordinate was NaN or infinite.
+  std::size_t skippedCount() const { return Skipped; }
+
+  const Vec3& point(std::size_t i) const { return Points[i]; }
+  const std::vector<Vec3>& points() const { return Points; }
+  /// Index in the constructor's input of indexed point @p i.
+  std::size_t originalId(std::size_t i) const { return OriginalIds[i]; }
+
+  /// Centroid and axis-aligned bounds of the indexed points (zero when empty).
+  const Vec3& centroid() const { return Centroid; }
+  const Vec3& boundsMin() const { return BoundsMin; }
+  const Vec3& boundsMax() const { return BoundsMax; }
+
+  /// Drops z in 2D; leaves 3D points untouched.
+  Vec3 restrict(const Vec3& x) const;
+
+  /// Nearest indexed point to @p x: (index, squared distance). Requires !empty().
+  std::pair<std::size_t, double> nearest(const Vec3& x) const;
+
+  /// The @p k nearest points, closest first, as (index, squared distance).
+  void kNearest(const Vec3& x, std::size_t k, std::vector<std::pair<std::uint32_t, double>>& out) const;
+
+  /// All points with squared distance to @p x strictly below @p sqRadius, unsorted.
+  void withinSqRadius(const Vec3& x, double sqRadius, std::vector<std::pair<std::uint32_t, double>>& out) const;
+
+private:
+  struct Tree;
+  int Dimension;
+  std::vector<Vec3> Points;
+  std::vector<std::size_t> OriginalIds;
+  std::size_t Skipped = 0;
+  Vec3 Centroid = Vec3::Zero();
+  Vec3 BoundsMin = Vec3::Zero();
+  Vec3 BoundsMax = Vec3::Zero();
+  std::unique_ptr<Tree> Impl;
+};
+
+/// True when all three coordinates are finite.
+bool isFinite(const Vec3& x);
+
+} // namespace pss

@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SurfaceDefinition.h
+ * @brief The interface every point-set surface definition implements: a direction field n(x)
+ *        and an energy e(y, a), the two ingredients of an extremal surface (Definition 1).
+ *
+ * Everything else (the implicit function g of Eq. 2, projection to minima or maxima, domain
+ * classification, field sampling) is written once against this interface in ExtremalSurface.h.
+ * Adding a definition (APSS, RIMLS, ...) means one new subclass and one Variant value.
+ */
+#pragma once
+
+#include "pss/Kernel.h"
+#include "pss/PointIndex.h"
+#include "pss/Types.h"
+
+#include <memory>
+
+namespace pss
+{
+
+class SurfaceDefinition
+{
+public:
+  /// Throws std::invalid_argument when @p index is empty or @p params are invalid.
+  SurfaceDefinition(const PointIndex& index, const SurfaceParameters& params);
+  virtual ~SurfaceDefinition() = default;
+  SurfaceDefinition(const SurfaceDefinition&) = delete;
+  SurfaceDefinition& operator=(const SurfaceDefinition&) = delete;
+
+  virtual Variant variant() const = 0;
+
+  /// n(x): the unoriented direction with its stability. Thread-safe.
+  virtual Direction direction(const Vec3& x) const = 0;
+
+  /**
+   * e(y, a) and d/dt e(y + t a, a) at t = 0 (a fixed, the weights moving with y). @p a must be a
+   * unit vector (z = 0 in 2D). Thread-safe.
+   */
+  virtual LineSample lineSample(const Vec3& y, const Vec3& a) const = 0;
+
+  /// e(y, a) at its true scale (may underflow to 0 for LevinMLS, never NaN).
+  virtual double energy(const Vec3& y, const Vec3& a) const;
+
+  const PointIndex& index() const { return Index; }
+  const SurfaceParameters& parameters() const { return Params; }
+  int dimension() const { return Index.dimension(); }
+  double h() const { return Params.h; }
+
+protected:
+  const PointIndex& Index;
+  const SurfaceParameters Params;
+};
+
+/// Factory: the definition named by @p v over @p index. Throws like the constructor.
+std::unique_ptr<SurfaceDefinition> makeSurface(
+  Variant v, const PointIndex& index, const SurfaceParameters& params);
+
+} // namespace pss

@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Variants.h
+ * @brief The five surface definitions of the paper. Construct them through makeSurface() or
+ *        directly; all share SurfaceDefinition's contract (thread-safe, const queries).
+ */
+#pragma once
+
+#include "pss/Kernel.h"
+#include "pss/Quadrature.h"
+#include "pss/SurfaceDefinition.h"
+
+namespace pss
+{
+
+/**
+ * @brief Levin's MLS surface (Eq. 1 with the plain Gaussian theta).
+ *
+ * e(y, a) = sum_i theta(y, p_i) <a, p_i - y>^2 = a^T C(y) a, n = smallest eigenvector of C(y),
+ * C about the query point y (not the centroid). The energy is reported at its true scale, which
+ * is tiny and flat far from the cloud: that is the paper's point about this definition.
+ */
+class LevinMLS : public SurfaceDefinition
+{
+public:
+  using SurfaceDefinition::SurfaceDefinition;
+  Variant variant() const override { return Variant::LevinMLS; }
+  Direction direction(const Vec3& x) const override;
+  LineSample lineSample(const Vec3& y, const Vec3& a) const override;
+};
+
+/**
+ * @brief Eq. 1 with normalized weights theta_N (Alexa et al., Sec. 4).
+ *
+ * Same n as LevinMLS (a positive factor does not move an argmin); the energy is a weighted mean
+ * of squared plane distances, so it grows away from the cloud instead of fading out.
+ */
+class NormalizedMLS : public SurfaceDefinition
+{
+public:
+  using SurfaceDefinition::SurfaceDefinition;
+  Variant variant() const override { return Variant::NormalizedMLS; }
+  Direction direction(const Vec3& x) const override;
+  LineSample lineSample(const Vec3& y, const Vec3& a) const override;
+};
+
+/**
+ * @brief n_COM: the normal of the total-least-squares plane through the weighted centre of mass
+ *        c(x) (Sec. 5, PointShop3D's heuristic); the energy is NormalizedMLS's.
+ *
+ * The paper prints <a, x> in the n_COM formula; the plane passes through c, so we use <a, c>.
+ */
+class CenterOfMass : public NormalizedMLS
+{
+public:
+  using NormalizedMLS::NormalizedMLS;
+  Variant variant() const override { return Variant::CenterOfMass; }
+  Direction direction(const Vec3& x) const override;
+};
+
+/**
+ * @brief The integral energy e_I(x, a) = int over P(x, a) of delta(y)^2 theta(y, x) dA (Sec. 5).
+ *
+ * Quadrature: with y = x + h (u b1 + v b2) for an orthonormal basis (b1, b2) of the plane (one
+ * axis b in 2D), theta(y, x) = exp(-u^2 - v^2) and
+ *   e_I ~= h^2 sum_jk w_j w_k delta(y_jk)^p    (3D),    h sum_j w_j delta(y_j)^p    (2D),
+ * with the Gauss-Hermite rule of SurfaceParameters::quadratureOrder and p = integrandPower.
+ * The slope along the normal is the same sum of p delta^(p-1) a . grad delta.
+ *
+ * n_I = argmin over unit a of e_I: in 2D a scan of the half circle refined by golden-section
+ * search; in 3D the best of a fixed set of candidate directions (13 lattice directions plus the
+ * centre-of-mass eigenvectors), refined by a shrinking pattern search on the sphere. Stability is
+ * (e_perp - e_min) / (e_perp + e_min), e_perp the least energy over directions orthogonal to n_I:
+ * for a quadratic form this is exactly the eigenvalue measure the other variants report.
+ */
+class IntegralEnergy : public SurfaceDefinition
+{
+public:
+  IntegralEnergy(const PointIndex& index, const SurfaceParameters& params);
+  Variant variant() const override { return Variant::Integral; }
+  Direction direction(const Vec3& x) const override;
+  LineSample lineSample(const Vec3& y, const Vec3& a) const override;
+  double energy(const Vec3& y, const Vec3& a) const override;
+
+private:
+  double integrate(const Vec3& x, const Vec3& a, const Vec3* slopeDirection, double* slope) const;
+  double leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n) const;
+  Direction direction2D(const Vec3& x) const;
+  Direction direction3D(const Vec3& x) const;
+
+  GaussHermiteRule Rule;
+  DistanceField Field;
+};
+
+/**
+ * @brief The delta variant: n = n_I and e(y, a) = delta(y), independent of a (end of Sec. 5).
+ */
+class DeltaEnergy : public SurfaceDefinition
+{
+public:
+  DeltaEnergy(const PointIndex& index, const SurfaceParameters& params);
+  Variant variant() const override { return Variant::Delta; }
+  Direction direction(const Vec3& x) const override { return Directions.direction(x); }
+  LineSample lineSample(const Vec3& y, const Vec3& a) const override;
+
+private:
+  IntegralEnergy Directions;
+  DistanceField Field;
+};
+
+} // namespace pss

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs what PointSetSurfaces needs from Debian 12's archive, and nothing that is already there.
+# Works as root, or through sudo otherwise. Safe to run any number of times.
+set -euo pipefail
+
+# ParaView 5.11's development package brings the VTK 9.2 we build against (Debian's libvtk9-dev
+# conflicts with python3-paraview); its CMake config needs python3-paraview and qtbase5-dev.
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev libnanoflann-dev libgtest-dev
+  paraview-dev python3-paraview qtbase5-dev
+  xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages are present"
+  exit 0
+fi
+
+if [ "$(id -u)" -eq 0 ]; then
+  as_root=()
+elif command -v sudo >/dev/null 2>&1; then
+  as_root=(sudo)
+else
+  echo "install-deps: missing packages (${missing[*]}) and neither root nor sudo is available" >&2
+  exit 1
+fi
+
+echo "install-deps: installing ${missing[*]}"
+"${as_root[@]}" apt-get update -q
+DEBIAN_FRONTEND=noninteractive "${as_root[@]}" apt-get install -y -q "${missing[@]}"
