@@ -4,11 +4,12 @@
 set -euo pipefail
 
 # ParaView 5.11's development package brings the VTK 9.2 we build against (Debian's libvtk9-dev
-# conflicts with python3-paraview); its CMake config needs python3-paraview and qtbase5-dev.
+# conflicts with python3-paraview); its CMake config needs python3-paraview and qtbase5-dev, and
+# the VTK components we use need libdouble-conversion-dev, which paraview-dev does not pull in.
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libnanoflann-dev libgtest-dev
-  paraview-dev python3-paraview qtbase5-dev
+  paraview-dev python3-paraview qtbase5-dev libdouble-conversion-dev
   xvfb xauth
 )
 

@@ -3,7 +3,9 @@
 
 #include <nanoflann.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <variant>
 
@@ -47,6 +49,55 @@ struct PointIndex::Tree
 bool isFinite(const Vec3& x)
 {
   return std::isfinite(x.x()) && std::isfinite(x.y()) && std::isfinite(x.z());
+}
+
+int detectDimension(const std::vector<Vec3>& points)
+{
+  double zMin = std::numeric_limits<double>::infinity();
+  double zMax = -zMin;
+  Vec3 lo = Vec3::Constant(zMin);
+  Vec3 hi = Vec3::Constant(zMax);
+  for (const Vec3& p : points)
+  {
+    if (isFinite(p))
+    {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  if (!(lo.x() <= hi.x()))
+  {
+    return 3;
+  }
+  const double extent = (hi - lo).maxCoeff();
+  return hi.z() - lo.z() <= 1e-12 * extent ? 2 : 3;
+}
+
+double estimateScale(const PointIndex& index, int k, double multiplier)
+{
+  if (k < 1 || index.size() < static_cast<std::size_t>(k) + 1)
+  {
+    return 0.0;
+  }
+  const std::size_t samples = std::min<std::size_t>(index.size(), 2000);
+  std::vector<double> distances;
+  distances.reserve(samples);
+  std::vector<std::pair<std::uint32_t, double>> found;
+  for (std::size_t s = 0; s < samples; ++s)
+  {
+    const std::size_t i = s * index.size() / samples;
+    index.kNearest(index.point(i), static_cast<std::size_t>(k) + 1, found); // the point itself is first
+    if (found.size() == static_cast<std::size_t>(k) + 1)
+    {
+      distances.push_back(std::sqrt(found.back().second));
+    }
+  }
+  if (distances.empty())
+  {
+    return 0.0;
+  }
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+  return multiplier * distances[distances.size() / 2];
 }
 
 PointIndex::PointIndex(const std::vector<Vec3>& points, int dimension)

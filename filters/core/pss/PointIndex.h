@@ -74,4 +74,19 @@ private:
 /// True when all three coordinates are finite.
 bool isFinite(const Vec3& x);
 
+/**
+ * 2 when every finite point has the same z (to 1e-12 of the cloud's extent), else 3: the rule
+ * behind Dimension = Auto. An empty cloud counts as 3.
+ */
+int detectDimension(const std::vector<Vec3>& points);
+
+/**
+ * The automatic scale: h = multiplier * median over points of the distance to their k-th nearest
+ * neighbour (k >= 1; at most 2000 evenly spread points are measured, so the cost stays small).
+ * With the defaults k = 10, multiplier = 1 this is about 5 spacings along a curve and 1.8
+ * spacings on a surface, enough neighbours for every definition to be defined near the cloud.
+ * Returns 0 when the cloud has fewer than k + 1 distinct points.
+ */
+double estimateScale(const PointIndex& index, int k = 10, double multiplier = 1.0);
+
 } // namespace pss

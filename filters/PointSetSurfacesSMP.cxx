@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "PointSetSurfacesSMP.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+
+namespace pss_vtk
+{
+
+void EnsureParallelBackend()
+{
+  static const bool done = []() {
+    const char* chosen = std::getenv("VTK_SMP_BACKEND_IN_USE");
+    if ((chosen == nullptr || *chosen == '\0') && std::strcmp(vtkSMPTools::GetBackend(), "Sequential") == 0)
+    {
+      vtkSMPTools::SetBackend("STDThread");
+    }
+    return true;
+  }();
+  (void)done;
+}
+
+bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType)>& body,
+  double progressBegin, double progressEnd)
+{
+  EnsureParallelBackend();
+  if (n <= 0)
+  {
+    return true;
+  }
+  std::atomic<vtkIdType> done{ 0 };
+  std::atomic<bool> aborted{ false };
+  // Chunks small enough for balance (far-off points cost many iterations) and for progress.
+  const int threads = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
+  const vtkIdType grain = std::max<vtkIdType>(1, std::min<vtkIdType>(1024, n / (threads * 32)));
+  vtkSMPTools::For(0, n, grain, [&](vtkIdType begin, vtkIdType end) {
+    if (aborted.load(std::memory_order_relaxed))
+    {
+      return;
+    }
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      body(i);
+    }
+    const vtkIdType total = done.fetch_add(end - begin) + (end - begin);
+    if (algorithm && vtkSMPTools::GetSingleThread())
+    {
+      algorithm->UpdateProgress(progressBegin + (progressEnd - progressBegin) * double(total) / double(n));
+      if (algorithm->GetAbortExecute())
+      {
+        aborted = true;
+      }
+    }
+  });
+  return !aborted.load();
+}
+
+}

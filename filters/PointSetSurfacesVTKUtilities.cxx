@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "PointSetSurfacesVTKUtilities.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkIdTypeArray.h"
+#include "vtkPointSetSurface.h"
+
+namespace pss_vtk
+{
+
+std::vector<pss::Vec3> ToVectors(vtkPoints* points)
+{
+  std::vector<pss::Vec3> out;
+  if (!points)
+  {
+    return out;
+  }
+  const vtkIdType n = points->GetNumberOfPoints();
+  out.resize(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    points->GetPoint(i, out[static_cast<std::size_t>(i)].data());
+  }
+  return out;
+}
+
+vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n)
+{
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfValues(n + 1);
+  connectivity->SetNumberOfValues(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    offsets->SetValue(i, i);
+    connectivity->SetValue(i, i);
+  }
+  offsets->SetValue(n, n);
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->SetData(offsets, connectivity);
+  return cells;
+}
+
+void WarnAboutSkippedPoints(vtkAlgorithm* algorithm, vtkPointSetSurface* surface)
+{
+  const vtkIdType skipped = surface->GetNumberOfSkippedPoints();
+  if (skipped > 0)
+  {
+    vtkWarningWithObjectMacro(algorithm, << skipped
+                                         << " cloud point(s) with NaN or infinite coordinates were left out of the surface");
+  }
+}
+
+}

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file PointSetSurfacesVTKUtilities.h
+ * @brief Private helpers shared by the filters: conversions between VTK and the core, output
+ *        arrays and cells. No mathematics lives here.
+ */
+#ifndef PointSetSurfacesVTKUtilities_h
+#define PointSetSurfacesVTKUtilities_h
+
+#include "vtkCellArray.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkSmartPointer.h"
+
+#include "pss/Types.h"
+
+#include <vector>
+
+class vtkAlgorithm;
+class vtkPointSetSurface;
+
+namespace pss_vtk
+{
+
+/// Coordinates of @p points as core vectors (empty for nullptr).
+std::vector<pss::Vec3> ToVectors(vtkPoints* points);
+
+/// A named array of @p tuples tuples with @p components components.
+template <class ArrayT>
+vtkSmartPointer<ArrayT> NewArray(const char* name, vtkIdType tuples, int components)
+{
+  auto array = vtkSmartPointer<ArrayT>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+/// One vertex cell per point 0..n-1.
+vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n);
+
+/// A warning on @p algorithm when the prepared cloud had points with NaN/Inf coordinates.
+void WarnAboutSkippedPoints(vtkAlgorithm* algorithm, vtkPointSetSurface* surface);
+
+}
+
+#endif

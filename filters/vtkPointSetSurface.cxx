@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPointSetSurface.h"
+
+#include "vtkObjectFactory.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+
+#include "pss/PointIndex.h"
+#include "pss/SurfaceDefinition.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+vtkStandardNewMacro(vtkPointSetSurface);
+
+vtkPointSetSurface::vtkPointSetSurface() = default;
+vtkPointSetSurface::~vtkPointSetSurface() = default;
+
+bool vtkPointSetSurface::Fail(const std::string& message)
+{
+  this->LastError = message;
+  this->Definition.reset();
+  this->Index.reset();
+  this->PreparedCloud = nullptr;
+  return false;
+}
+
+bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
+{
+  vtkMTimeType cloudTime = 0;
+  if (cloud)
+  {
+    cloudTime = cloud->GetMTime();
+    if (cloud->GetPoints())
+    {
+      cloudTime = std::max(cloudTime, cloud->GetPoints()->GetMTime());
+    }
+  }
+  const vtkMTimeType stamp = std::max(cloudTime, this->GetMTime());
+  if (this->Definition && cloud == this->PreparedCloud && stamp <= this->PreparedTime)
+  {
+    return true;
+  }
+
+  const vtkIdType n = cloud ? cloud->GetNumberOfPoints() : 0;
+  if (n == 0)
+  {
+    return this->Fail("the point cloud is empty");
+  }
+  if (this->Dimension == 1)
+  {
+    return this->Fail("Dimension must be Auto (0), 2 or 3, not 1");
+  }
+  std::vector<pss::Vec3> points(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    cloud->GetPoint(i, p);
+    points[static_cast<std::size_t>(i)] = pss::Vec3(p[0], p[1], p[2]);
+  }
+  const int dimension = this->Dimension == DIMENSION_AUTO ? pss::detectDimension(points) : this->Dimension;
+
+  try
+  {
+    auto index = std::make_unique<pss::PointIndex>(points, dimension);
+    this->SkippedPoints = static_cast<vtkIdType>(index->skippedCount());
+    if (index->empty())
+    {
+      return this->Fail("the point cloud has no point with finite coordinates");
+    }
+    double h = this->ScaleFactor;
+    if (this->AutomaticScale)
+    {
+      h = pss::estimateScale(*index, this->ScaleNeighbors, this->ScaleMultiplier);
+      if (!(h > 0.0))
+      {
+        std::ostringstream msg;
+        msg << "the automatic scale is 0: the " << index->size() << " finite points have fewer than "
+            << this->ScaleNeighbors + 1 << " distinct positions around most points (duplicates?); "
+            << "set ScaleFactor and turn AutomaticScale off";
+        return this->Fail(msg.str());
+      }
+    }
+    pss::SurfaceParameters params;
+    params.h = h;
+    params.cutoff = this->KernelCutoff;
+    params.quadratureOrder = this->QuadratureOrder;
+    params.minStability = this->MinimumStability;
+    this->Definition = pss::makeSurface(static_cast<pss::Variant>(this->Variant), *index, params);
+    this->Index = std::move(index);
+    this->EffectiveScale = h;
+    this->EffectiveDimension = dimension;
+  }
+  catch (const std::exception& e)
+  {
+    return this->Fail(std::string("invalid surface parameters: ") + e.what());
+  }
+  this->LastError.clear();
+  this->PreparedCloud = cloud;
+  this->PreparedTime = stamp;
+  return true;
+}
+
+void vtkPointSetSurface::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Variant: " << this->Variant << "\n";
+  os << indent << "ScaleFactor: " << this->ScaleFactor << "\n";
+  os << indent << "AutomaticScale: " << (this->AutomaticScale ? "On" : "Off") << "\n";
+  os << indent << "ScaleNeighbors: " << this->ScaleNeighbors << "\n";
+  os << indent << "ScaleMultiplier: " << this->ScaleMultiplier << "\n";
+  os << indent << "Dimension: " << this->Dimension << "\n";
+  os << indent << "KernelCutoff: " << this->KernelCutoff << "\n";
+  os << indent << "QuadratureOrder: " << this->QuadratureOrder << "\n";
+  os << indent << "MinimumStability: " << this->MinimumStability << "\n";
+  os << indent << "EffectiveScale: " << this->EffectiveScale << "\n";
+  os << indent << "EffectiveDimension: " << this->EffectiveDimension << "\n";
+  os << indent << "NumberOfSkippedPoints: " << this->SkippedPoints << "\n";
+}

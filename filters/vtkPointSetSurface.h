@@ -1,0 +1,192 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkPointSetSurface
+ * @brief   which point-set surface to use, and at what scale: shared by every PointSetSurfaces filter
+ *
+ * vtkPointSetSurface describes one of the five surface definitions of Amenta & Kil, "The Domain
+ * of a Point Set Surface" (LevinMLS, NormalizedMLS, CenterOfMass, Integral, Delta), the Gaussian
+ * scale h, the dimension of the cloud and the numerical settings of the kernel. The filters
+ * (vtkPointSetSurfaceProjection, vtkPointSetSurfaceDomainClassifier,
+ * vtkPointSetSurfaceFieldSampler, vtkPointSetSurfaceEnergyGlyphs) and the implicit function
+ * vtkPointSetSurfaceImplicitFunction each hold one (GetSurface()), so a pipeline can share a single
+ * description among them, the way vtkPointInterpolator shares an interpolation kernel.
+ *
+ * Prepare() builds the k-d tree and the surface definition for a cloud and caches them until the
+ * cloud or a parameter changes. Points with NaN or infinite coordinates are left out of the index
+ * and counted (GetNumberOfSkippedPoints()).
+ *
+ * Scale: with AutomaticScale on (the default), h = ScaleMultiplier times the median distance from
+ * a point to its ScaleNeighbors-th nearest neighbour (defaults 1 and 10: about five spacings along
+ * a curve, two on a surface). With AutomaticScale off, ScaleFactor is h and must be > 0.
+ *
+ * @sa vtkPointSetSurfaceProjection vtkPointSetSurfaceImplicitFunction
+ */
+#ifndef vtkPointSetSurface_h
+#define vtkPointSetSurface_h
+
+#include "PointSetSurfacesFiltersModule.h" // for export macro
+#include "vtkObject.h"
+
+#include <memory> // for std::unique_ptr
+#include <string> // for std::string
+
+class vtkPointSet;
+
+#ifndef __VTK_WRAP__
+namespace pss
+{
+class PointIndex;
+class SurfaceDefinition;
+}
+#endif
+
+class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurface : public vtkObject
+{
+public:
+  static vtkPointSetSurface* New();
+  vtkTypeMacro(vtkPointSetSurface, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The surface definitions (values match pss::Variant).
+  enum VariantType
+  {
+    LEVIN_MLS = 0,
+    NORMALIZED_MLS = 1,
+    CENTER_OF_MASS = 2,
+    INTEGRAL = 3,
+    DELTA = 4
+  };
+
+  /// Dimension of the cloud: AUTO (2 when all z are equal, else 3), 2 (xy-plane) or 3.
+  enum DimensionType
+  {
+    DIMENSION_AUTO = 0,
+    DIMENSION_2D = 2,
+    DIMENSION_3D = 3
+  };
+
+  ///@{
+  /**
+   * The surface definition. Default CENTER_OF_MASS: cheap, and with a wide domain on smooth
+   * surfaces (Sec. 5 of the paper).
+   */
+  vtkSetClampMacro(Variant, int, LEVIN_MLS, DELTA);
+  vtkGetMacro(Variant, int);
+  void SetVariantToLevinMLS() { this->SetVariant(LEVIN_MLS); }
+  void SetVariantToNormalizedMLS() { this->SetVariant(NORMALIZED_MLS); }
+  void SetVariantToCenterOfMass() { this->SetVariant(CENTER_OF_MASS); }
+  void SetVariantToIntegral() { this->SetVariant(INTEGRAL); }
+  void SetVariantToDelta() { this->SetVariant(DELTA); }
+  ///@}
+
+  ///@{
+  /**
+   * Gaussian scale h (theta = exp(-d^2/h^2)), used when AutomaticScale is off. Not clamped: a value
+   * <= 0 or non-finite makes Prepare() fail with an error, rather than silently becoming another h.
+   * Default 1.
+   */
+  vtkSetMacro(ScaleFactor, double);
+  vtkGetMacro(ScaleFactor, double);
+  ///@}
+
+  ///@{
+  /// Derive h from the k-nearest-neighbour spacing (see the class description). Default on.
+  vtkSetMacro(AutomaticScale, bool);
+  vtkGetMacro(AutomaticScale, bool);
+  vtkBooleanMacro(AutomaticScale, bool);
+  ///@}
+
+  ///@{
+  /// k of the automatic scale rule. Default 10.
+  vtkSetClampMacro(ScaleNeighbors, int, 1, 1000);
+  vtkGetMacro(ScaleNeighbors, int);
+  ///@}
+
+  ///@{
+  /// Multiplier of the automatic scale rule. Default 1.
+  vtkSetClampMacro(ScaleMultiplier, double, 1e-3, 1e3);
+  vtkGetMacro(ScaleMultiplier, double);
+  ///@}
+
+  ///@{
+  /// DIMENSION_AUTO, DIMENSION_2D or DIMENSION_3D (1 is rejected by Prepare()). Default AUTO.
+  vtkSetClampMacro(Dimension, int, DIMENSION_AUTO, DIMENSION_3D);
+  vtkGetMacro(Dimension, int);
+  ///@}
+
+  ///@{
+  /**
+   * Truncation of the Gaussian, in units of h beyond the nearest point: points farther than
+   * sqrt(dmin^2 + (cutoff h)^2) are ignored, each weighing < exp(-cutoff^2) of the nearest.
+   * Default 3 (1.2e-4).
+   */
+  vtkSetClampMacro(KernelCutoff, double, 0.5, 20.0);
+  vtkGetMacro(KernelCutoff, double);
+  ///@}
+
+  ///@{
+  /// Gauss-Hermite nodes per axis for the integral energy e_I. Default 6.
+  vtkSetClampMacro(QuadratureOrder, int, 1, 32);
+  vtkGetMacro(QuadratureOrder, int);
+  ///@}
+
+  ///@{
+  /// Below this stability n(x) counts as undefined. Default 1e-5.
+  vtkSetClampMacro(MinimumStability, double, 0.0, 0.999);
+  vtkGetMacro(MinimumStability, double);
+  ///@}
+
+  /**
+   * Builds (or reuses) the index and the surface definition for @p cloud. Returns false, with a
+   * message in GetLastError(), for an empty cloud, a cloud of only non-finite points, h <= 0, an
+   * automatic scale of zero (all points duplicates) or Dimension 1.
+   */
+  bool Prepare(vtkPointSet* cloud);
+
+  /// Message of the last failed Prepare() (empty after a successful one).
+  const char* GetLastError() const { return this->LastError.c_str(); }
+
+  /// The h in use after a successful Prepare().
+  double GetEffectiveScale() const { return this->EffectiveScale; }
+  /// 2 or 3 after a successful Prepare().
+  int GetEffectiveDimension() const { return this->EffectiveDimension; }
+  /// Points of the last prepared cloud left out for NaN or infinite coordinates.
+  vtkIdType GetNumberOfSkippedPoints() const { return this->SkippedPoints; }
+
+#ifndef __VTK_WRAP__
+  /// The prepared definition (nullptr before a successful Prepare()).
+  const pss::SurfaceDefinition* GetDefinition() const { return this->Definition.get(); }
+  const pss::PointIndex* GetIndex() const { return this->Index.get(); }
+#endif
+
+protected:
+  vtkPointSetSurface();
+  ~vtkPointSetSurface() override;
+
+  int Variant = CENTER_OF_MASS;
+  double ScaleFactor = 1.0;
+  bool AutomaticScale = true;
+  int ScaleNeighbors = 10;
+  double ScaleMultiplier = 1.0;
+  int Dimension = DIMENSION_AUTO;
+  double KernelCutoff = 3.0;
+  int QuadratureOrder = 6;
+  double MinimumStability = 1e-5;
+
+private:
+  vtkPointSetSurface(const vtkPointSetSurface&) = delete;
+  void operator=(const vtkPointSetSurface&) = delete;
+
+  bool Fail(const std::string& message);
+
+  std::unique_ptr<pss::PointIndex> Index;
+  std::unique_ptr<pss::SurfaceDefinition> Definition;
+  vtkPointSet* PreparedCloud = nullptr; // identity only, never dereferenced after Prepare()
+  vtkMTimeType PreparedTime = 0;
+  std::string LastError;
+  double EffectiveScale = 0.0;
+  int EffectiveDimension = 3;
+  vtkIdType SkippedPoints = 0;
+};
+
+#endif

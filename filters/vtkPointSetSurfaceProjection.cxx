@@ -1,0 +1,224 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPointSetSurfaceProjection.h"
+
+#include "PointSetSurfacesSMP.h"
+#include "PointSetSurfacesVTKUtilities.h"
+#include "vtkPointSetSurface.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDoubleArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "pss/ExtremalSurface.h"
+#include "pss/PointIndex.h"
+#include "pss/SurfaceDefinition.h"
+
+vtkStandardNewMacro(vtkPointSetSurfaceProjection);
+vtkCxxSetObjectMacro(vtkPointSetSurfaceProjection, Surface, vtkPointSetSurface);
+
+vtkPointSetSurfaceProjection::vtkPointSetSurfaceProjection()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(2);
+  this->Surface = vtkPointSetSurface::New();
+}
+
+vtkPointSetSurfaceProjection::~vtkPointSetSurfaceProjection()
+{
+  this->SetSurface(nullptr);
+}
+
+void vtkPointSetSurfaceProjection::SetStartPointsConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
+void vtkPointSetSurfaceProjection::SetStartPointsData(vtkDataObject* data)
+{
+  this->SetInputData(1, data);
+}
+
+double vtkPointSetSurfaceProjection::GetEffectiveScale() const
+{
+  return this->Surface ? this->Surface->GetEffectiveScale() : 0.0;
+}
+
+vtkMTimeType vtkPointSetSurfaceProjection::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->Surface)
+  {
+    t = std::max(t, this->Surface->GetMTime());
+  }
+  return t;
+}
+
+int vtkPointSetSurfaceProjection::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
+  return 1;
+}
+
+bool vtkPointSetSurfaceProjection::AddPointArrays(
+  vtkPointSet*, const std::vector<pss::ProjectionResult>&, vtkPointData*)
+{
+  return true;
+}
+
+int vtkPointSetSurfaceProjection::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPointSet* cloud = vtkPointSet::GetData(inputVector[0], 0);
+  vtkPointSet* starts =
+    inputVector[1]->GetNumberOfInformationObjects() > 0 ? vtkPointSet::GetData(inputVector[1], 0) : cloud;
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* lines = vtkPolyData::GetData(outputVector, 1);
+  if (!this->Surface)
+  {
+    vtkErrorMacro(<< "no vtkPointSetSurface is set");
+    return 0;
+  }
+  if (!this->Surface->Prepare(cloud))
+  {
+    vtkErrorMacro(<< "cannot define the surface: " << this->Surface->GetLastError());
+    return 0;
+  }
+  pss_vtk::WarnAboutSkippedPoints(this, this->Surface);
+  if (!starts || starts->GetNumberOfPoints() == 0)
+  {
+    return 1; // nothing to project: empty outputs
+  }
+
+  const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
+  pss::ProjectionOptions options;
+  options.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
+  options.seekMaxima = this->SeekMaxima;
+  options.maxIterations = this->MaxIterations;
+  options.tolerance = this->Tolerance;
+  options.maxTravel = this->MaxTravel;
+
+  const std::vector<pss::Vec3> startPoints = pss_vtk::ToVectors(starts->GetPoints());
+  const vtkIdType n = static_cast<vtkIdType>(startPoints.size());
+  std::vector<pss::ProjectionResult> results(startPoints.size());
+  if (!pss_vtk::ParallelFor(this, n, [&](vtkIdType i) { results[i] = pss::project(surface, startPoints[i], options); }))
+  {
+    return 1; // aborted: leave the outputs empty
+  }
+
+  const pss::Orientation orientation = pss::Orientation::awayFromCentroid(*this->Surface->GetIndex());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  auto normal = pss_vtk::NewArray<vtkDoubleArray>("Normal", n, 3);
+  auto energy = pss_vtk::NewArray<vtkDoubleArray>("Energy", n, 1);
+  auto displacement = pss_vtk::NewArray<vtkDoubleArray>("Displacement", n, 3);
+  auto iterations = pss_vtk::NewArray<vtkIntArray>("Iterations", n, 1);
+  auto converged = pss_vtk::NewArray<vtkUnsignedCharArray>("Converged", n, 1);
+  auto stability = pss_vtk::NewArray<vtkDoubleArray>("Stability", n, 1);
+  auto extremum = pss_vtk::NewArray<vtkIntArray>("ExtremumType", n, 1);
+  auto reason = pss_vtk::NewArray<vtkIntArray>("StopReason", n, 1);
+  vtkIdType invalid = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const pss::ProjectionResult& r = results[i];
+    const bool valid = r.reason != pss::StopReason::InvalidInput;
+    invalid += valid ? 0 : 1;
+    points->SetPoint(i, r.point.data());
+    const pss::Vec3 nrm = valid ? orientation.apply(r.direction.n, r.point) : pss::Vec3::Zero();
+    normal->SetTypedTuple(i, nrm.data());
+    energy->SetValue(i, r.energy);
+    const pss::Vec3 d = valid ? pss::Vec3(r.point - r.start) : pss::Vec3::Zero();
+    displacement->SetTypedTuple(i, d.data());
+    iterations->SetValue(i, r.iterations);
+    converged->SetValue(i, r.converged ? 1 : 0);
+    stability->SetValue(i, r.direction.stability);
+    extremum->SetValue(i, static_cast<int>(r.type));
+    reason->SetValue(i, static_cast<int>(r.reason));
+  }
+  if (invalid > 0)
+  {
+    vtkWarningMacro(<< invalid << " start point(s) have NaN or infinite coordinates: left in place, StopReason 4");
+  }
+
+  output->SetPoints(points);
+  output->SetVerts(pss_vtk::VertexCells(n));
+  vtkPointData* outPD = output->GetPointData();
+  outPD->PassData(starts->GetPointData());
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(normal), static_cast<vtkDataArray*>(energy),
+         static_cast<vtkDataArray*>(displacement), static_cast<vtkDataArray*>(iterations),
+         static_cast<vtkDataArray*>(converged), static_cast<vtkDataArray*>(stability),
+         static_cast<vtkDataArray*>(extremum), static_cast<vtkDataArray*>(reason) })
+  {
+    outPD->AddArray(a);
+  }
+  outPD->SetNormals(normal);
+  if (!this->AddPointArrays(starts, results, outPD))
+  {
+    output->Initialize();
+    return 0;
+  }
+
+  if (this->GenerateProjectionLines)
+  {
+    vtkNew<vtkPoints> ends;
+    ends->SetDataTypeToDouble();
+    vtkNew<vtkCellArray> segments;
+    auto lineConverged = pss_vtk::NewArray<vtkUnsignedCharArray>("Converged", 0, 1);
+    auto lineReason = pss_vtk::NewArray<vtkIntArray>("StopReason", 0, 1);
+    auto lineStart = pss_vtk::NewArray<vtkIdTypeArray>("StartPointId", 0, 1);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      const pss::ProjectionResult& r = results[i];
+      if (r.reason == pss::StopReason::InvalidInput)
+      {
+        continue;
+      }
+      const vtkIdType ids[2] = { ends->InsertNextPoint(r.start.data()), ends->InsertNextPoint(r.point.data()) };
+      segments->InsertNextCell(2, ids);
+      lineConverged->InsertNextValue(r.converged ? 1 : 0);
+      lineReason->InsertNextValue(static_cast<int>(r.reason));
+      lineStart->InsertNextValue(i);
+    }
+    lines->SetPoints(ends);
+    lines->SetLines(segments);
+    lines->GetCellData()->AddArray(lineConverged);
+    lines->GetCellData()->AddArray(lineReason);
+    lines->GetCellData()->AddArray(lineStart);
+  }
+  return 1;
+}
+
+void vtkPointSetSurfaceProjection::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Procedure: " << (this->Procedure == PLANE ? "Plane" : "Extremal") << "\n";
+  os << indent << "MaxIterations: " << this->MaxIterations << "\n";
+  os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "MaxTravel: " << this->MaxTravel << "\n";
+  os << indent << "SeekMaxima: " << (this->SeekMaxima ? "On" : "Off") << "\n";
+  os << indent << "GenerateProjectionLines: " << (this->GenerateProjectionLines ? "On" : "Off") << "\n";
+  os << indent << "Surface: ";
+  if (this->Surface)
+  {
+    os << "\n";
+    this->Surface->PrintSelf(os, indent.GetNextIndent());
+  }
+  else
+  {
+    os << "(none)\n";
+  }
+}

@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkPointSetSurfaceProjection
+ * @brief   move points onto a moving-least-squares point-set surface, reporting how each got there
+ *
+ * Input 0 is the point cloud that defines the surface (any vtkPointSet). Input 1, optional, holds
+ * the start points; without it the cloud's own points are projected. Each start point x is moved
+ * by the procedure f of the paper: take n(x), go to the nearest local minimum (or maximum, with
+ * SeekMaxima) of e along the line through x in direction n(x), repeat until a step is shorter
+ * than Tolerance * h (Procedure EXTREMAL); or x <- x - <n, x - c(x)> n (Procedure PLANE, the
+ * centre-of-mass fast path). Which surface, at which scale, is GetSurface()'s business.
+ *
+ * Output 0: one vertex per start point, at the end of its projection, with the start points'
+ * point data passed through and these arrays:
+ * - `Normal` (3 doubles): n at the end point, oriented away from the cloud's centroid;
+ * - `Energy`: e(x, n(x)) at the end point (LevinMLS may underflow to 0);
+ * - `Displacement` (3 doubles): end point minus start point;
+ * - `Iterations`, `Converged` (0/1), `Stability` (of n at the end point);
+ * - `ExtremumType`: 0 none, 1 minimum (on the extremal surface), 2 maximum;
+ * - `StopReason`: 0 converged, 1 iteration limit, 2 n undefined, 3 no extremum along the line,
+ *   4 start point with NaN/Inf coordinates (left where it was, and flagged here).
+ *
+ * Output 1 (GenerateProjectionLines on): one line cell per start point from the start to the end
+ * point (Figure 1 of the paper), with `Converged` and `StopReason` as cell data.
+ *
+ * Runs on all cores through vtkSMPTools (see PointSetSurfacesSMP.h about ParaView's default
+ * Sequential backend), reports progress and honours AbortExecute.
+ *
+ * @sa vtkPointSetSurface vtkPointSetSurfaceDomainClassifier
+ */
+#ifndef vtkPointSetSurfaceProjection_h
+#define vtkPointSetSurfaceProjection_h
+
+#include "PointSetSurfacesFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+#include <vector> // for std::vector
+
+class vtkPointData;
+class vtkPointSet;
+class vtkPointSetSurface;
+
+#ifndef __VTK_WRAP__
+namespace pss
+{
+struct ProjectionResult;
+}
+#endif
+
+class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceProjection : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkPointSetSurfaceProjection* New();
+  vtkTypeMacro(vtkPointSetSurfaceProjection, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum ProcedureType
+  {
+    EXTREMAL = 0,
+    PLANE = 1
+  };
+
+  ///@{
+  /// The surface definition and its parameters (never null; a default one is created).
+  void SetSurface(vtkPointSetSurface* surface);
+  vtkGetObjectMacro(Surface, vtkPointSetSurface);
+  ///@}
+
+  /// Start points (input 1). Without them the cloud itself is projected.
+  void SetStartPointsConnection(vtkAlgorithmOutput* output);
+  void SetStartPointsData(vtkDataObject* data);
+
+  ///@{
+  /// EXTREMAL (Definition 1, default) or PLANE (the centre-of-mass procedure).
+  vtkSetClampMacro(Procedure, int, EXTREMAL, PLANE);
+  vtkGetMacro(Procedure, int);
+  void SetProcedureToExtremal() { this->SetProcedure(EXTREMAL); }
+  void SetProcedureToPlane() { this->SetProcedure(PLANE); }
+  ///@}
+
+  ///@{
+  /// Iteration limit per point. Default 100.
+  vtkSetClampMacro(MaxIterations, int, 1, 100000);
+  vtkGetMacro(MaxIterations, int);
+  ///@}
+
+  ///@{
+  /// Convergence: a step shorter than Tolerance * h. Default 1e-6.
+  vtkSetClampMacro(Tolerance, double, 1e-14, 1.0);
+  vtkGetMacro(Tolerance, double);
+  ///@}
+
+  ///@{
+  /// Longest search along one line, in units of h. Default 1000.
+  vtkSetClampMacro(MaxTravel, double, 1e-3, 1e9);
+  vtkGetMacro(MaxTravel, double);
+  ///@}
+
+  ///@{
+  /// Converge to maxima of e along n instead of minima (the green curves of Figures 9 and 10).
+  vtkSetMacro(SeekMaxima, bool);
+  vtkGetMacro(SeekMaxima, bool);
+  vtkBooleanMacro(SeekMaxima, bool);
+  ///@}
+
+  ///@{
+  /// Fill output 1 with a segment from each start point to its projection. Default off.
+  vtkSetMacro(GenerateProjectionLines, bool);
+  vtkGetMacro(GenerateProjectionLines, bool);
+  vtkBooleanMacro(GenerateProjectionLines, bool);
+  ///@}
+
+  /// The h used by the last update (after automatic scaling).
+  double GetEffectiveScale() const;
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkPointSetSurfaceProjection();
+  ~vtkPointSetSurfaceProjection() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+#ifndef __VTK_WRAP__
+  /**
+   * Hook for subclasses: add arrays computed from the projections to the output point data.
+   * Called after the standard arrays; return false (after vtkErrorMacro) to fail the update.
+   */
+  virtual bool AddPointArrays(vtkPointSet* starts, const std::vector<pss::ProjectionResult>& results,
+    vtkPointData* outPD);
+#endif
+
+  vtkPointSetSurface* Surface = nullptr;
+  int Procedure = EXTREMAL;
+  int MaxIterations = 100;
+  double Tolerance = 1e-6;
+  double MaxTravel = 1000.0;
+  bool SeekMaxima = false;
+  bool GenerateProjectionLines = false;
+
+private:
+  vtkPointSetSurfaceProjection(const vtkPointSetSurfaceProjection&) = delete;
+  void operator=(const vtkPointSetSurfaceProjection&) = delete;
+};
+
+#endif
