@@ -5,6 +5,7 @@
  */
 #pragma once
 
+#include "pss/Domain.h"
 #include "pss/ExtremalSurface.h"
 #include "pss/Kernel.h"
 #include "pss/Parallel.h"

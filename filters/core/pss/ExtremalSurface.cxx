@@ -258,6 +258,7 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   }
   const double h = s.h();
   Direction dir = s.direction(x);
+  res.startDirection = dir;
   res.reason = StopReason::MaxIterations;
   ExtremumType lastType = ExtremumType::None;
   for (int it = 0;; ++it)

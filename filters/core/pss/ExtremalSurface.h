@@ -97,6 +97,7 @@ struct ProjectionResult
   Vec3 start = Vec3::Zero();
   Vec3 point = Vec3::Zero();          ///< where the projection stopped (== start on InvalidInput)
   Direction direction;                ///< n at the final point
+  Direction startDirection;           ///< n at the start point
   double energy = 0.0;                ///< e(point, n(point)) at true scale
   int iterations = 0;
   bool converged = false;

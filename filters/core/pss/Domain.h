@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Domain.h
+ * @brief Is a start point inside the domain of a surface definition? (Sections 3, 4 and 6.)
+ *
+ * A start point x is projected; the label says what became of it and the evidence says why:
+ * - InDomain: the projection converged to a point near the cloud whose n agrees with the cloud's
+ *   own normal there;
+ * - Spurious: it converged, but to a fixed point far from the cloud, or one whose n disagrees
+ *   with the cloud's local normal (the spurious components of Figures 6 and 9);
+ * - Undefined: n(x) was not well defined along the way (or x had NaN/Inf coordinates);
+ * - NotConverged: the iteration limit was reached, or no extremum was found along the line.
+ *
+ * The cloud's local normal at the fixed point f is the centre-of-mass normal (total least squares
+ * plane of the Gaussian-weighted neighbours) evaluated at the cloud point nearest to f: it depends
+ * on the cloud alone, whatever definition is being classified.
+ */
+#pragma once
+
+#include "pss/ExtremalSurface.h"
+#include "pss/SurfaceDefinition.h"
+
+namespace pss
+{
+
+enum class DomainLabel : int
+{
+  InDomain = 0,
+  Spurious = 1,
+  Undefined = 2,
+  NotConverged = 3
+};
+
+const char* domainLabelName(DomainLabel label);
+
+struct DomainThresholds
+{
+  double maxDistance = 1.0;      ///< fixed point farther than this (in h) from every cloud point: Spurious
+  double maxNormalAngle = 30.0;  ///< degrees between n at the fixed point and the cloud's normal there
+
+  void validate() const; ///< throws std::invalid_argument
+};
+
+struct DomainEvidence
+{
+  DomainLabel label = DomainLabel::Undefined;
+  ProjectionResult projection;
+  double distanceToCloud = 0.0;  ///< from the fixed point to the nearest cloud point (absolute units)
+  double normalAngle = 0.0;      ///< degrees, in [0, 90]: n at the fixed point vs the cloud's normal there
+  double startAngle = 0.0;       ///< degrees, in [0, 90]: n at the start point vs n at the fixed point
+  double startStability = 0.0;   ///< stability of n at the start point
+};
+
+/// Projects @p start with @p options and labels the outcome (see the file comment).
+DomainEvidence classifyStart(const SurfaceDefinition& s, const Vec3& start, const ProjectionOptions& options,
+  const DomainThresholds& thresholds);
+
+/// Unoriented angle between two directions, in degrees within [0, 90].
+double unorientedAngleDegrees(const Vec3& a, const Vec3& b);
+
+} // namespace pss
