@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Input handling (PointIndex, factory, NaN starts), Gauss-Hermite exactness and seeking maxima.
+
+#include "TestClouds.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+using namespace pss;
+using namespace pss_test;
+
+// Truth: non-finite input points are dropped and counted, every kept point maps back to its
+// input position (exact integer/coordinate bookkeeping, so exact equality).
+TEST(PointIndex, SkipsNonFinitePointsAndMapsIds)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<Vec3> input = { Vec3(0, 0, 0), Vec3(nan, 1, 2), Vec3(1, 2, 3), Vec3(4, inf, 0),
+    Vec3(-inf, 0, 0), Vec3(5, 5, 5), Vec3(0, 0, nan) };
+  PointIndex index(input, 3);
+  EXPECT_EQ(index.size(), 3u);
+  EXPECT_EQ(index.skippedCount(), 4u);
+  std::vector<std::size_t> ids;
+  for (std::size_t i = 0; i < index.size(); ++i)
+  {
+    ids.push_back(index.originalId(i));
+    EXPECT_TRUE(isFinite(index.point(i)));
+    EXPECT_EQ(index.point(i), input[index.originalId(i)]);
+  }
+  std::sort(ids.begin(), ids.end());
+  EXPECT_EQ(ids, (std::vector<std::size_t>{ 0, 2, 5 }));
+  // nearest() only sees the finite points: (1,2,3) is the nearest to (1,2,2.9).
+  const auto nn = index.nearest(Vec3(1, 2, 2.9));
+  EXPECT_EQ(index.originalId(nn.first), 2u);
+  EXPECT_NEAR(nn.second, 0.01, 1e-12);
+}
+
+// Truth: in 2D z is ignored (a z-offset query has the same nearest distance), other dimensions throw.
+TEST(PointIndex, TwoDimensionalIgnoresZAndRejectsBadDimension)
+{
+  const std::vector<Vec3> input = { Vec3(0, 0, 0), Vec3(1, 0, 0) };
+  PointIndex index(input, 2);
+  EXPECT_EQ(index.dimension(), 2);
+  EXPECT_NEAR(index.nearest(Vec3(0.25, 0.5, 7.0)).second, 0.25 * 0.25 + 0.25, 1e-12);
+  EXPECT_THROW({ PointIndex bad(input, 4); }, std::invalid_argument);
+  EXPECT_THROW({ PointIndex bad(input, 1); }, std::invalid_argument);
+}
+
+// Truth: the contract of makeSurface (empty index, h <= 0 or NaN are rejected) for every variant.
+TEST(Factory, RejectsEmptyIndexAndBadScale)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  PointIndex empty(std::vector<Vec3>{}, 3);
+  PointIndex allNaN(std::vector<Vec3>{ Vec3(nan, 0, 0) }, 3);
+  PointIndex good(lineCloud(1.0, 0.1), 2);
+  for (Variant v : allVariants())
+  {
+    SCOPED_TRACE(variantName(v));
+    EXPECT_THROW(makeSurface(v, empty, params(1.0)), std::invalid_argument);
+    EXPECT_THROW(makeSurface(v, allNaN, params(1.0)), std::invalid_argument);
+    EXPECT_THROW(makeSurface(v, good, params(0.0)), std::invalid_argument);
+    EXPECT_THROW(makeSurface(v, good, params(-1.0)), std::invalid_argument);
+    EXPECT_THROW(makeSurface(v, good, params(nan)), std::invalid_argument);
+    EXPECT_THROW(makeSurface(v, good, params(std::numeric_limits<double>::infinity())),
+      std::invalid_argument);
+    auto s = makeSurface(v, good, params(1.0));
+    ASSERT_TRUE(s);
+    EXPECT_EQ(s->variant(), v);
+  }
+}
+
+// Truth: a start with a NaN/Inf coordinate cannot be projected; the contract says InvalidInput.
+TEST(Projection, NonFiniteStartIsInvalidInput)
+{
+  PointIndex index(lineCloud(3.0, 0.1), 2);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (Variant v : allVariants())
+  {
+    SCOPED_TRACE(variantName(v));
+    auto s = makeSurface(v, index, params(1.0));
+    for (const Vec3& start : { Vec3(nan, 0.5, 0), Vec3(0, std::numeric_limits<double>::infinity(), 0) })
+    {
+      for (Procedure proc : { Procedure::Extremal, Procedure::Plane })
+      {
+        ProjectionOptions opt;
+        opt.procedure = proc;
+        const ProjectionResult r = project(*s, start, opt);
+        EXPECT_EQ(r.reason, StopReason::InvalidInput);
+        EXPECT_FALSE(r.converged);
+      }
+    }
+  }
+}
+
+// Truth: int x^(2k) e^(-x^2) dx = Gamma(k + 1/2) exactly for 2k <= 2n - 1, odd moments vanish,
+// weights sum to sqrt(pi). 1e-12 relative for n <= 12 and for degree <= 16 at any n; above that
+// (n > 12, degree > 16) the moment is carried by outer weights as small as 1e-22, which the
+// Golub-Welsch method (Quadrature.h) only gets to absolute, not relative, accuracy, so 1e-6.
+TEST(Quadrature, GaussHermiteIsExactForPolynomials)
+{
+  for (int n = 1; n <= 32; ++n)
+  {
+    SCOPED_TRACE(n);
+    const GaussHermiteRule rule = gaussHermite(n);
+    ASSERT_EQ(rule.nodes.size(), static_cast<std::size_t>(n));
+    ASSERT_EQ(rule.weights.size(), static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i)
+    {
+      EXPECT_NEAR(rule.nodes[i], -rule.nodes[n - 1 - i], 1e-12 * (1 + std::abs(rule.nodes[i])));
+      if (i > 0)
+      {
+        EXPECT_LT(rule.nodes[i - 1], rule.nodes[i]);
+      }
+      EXPECT_GT(rule.weights[i], 0.0);
+    }
+    for (int degree = 0; degree <= 2 * n - 1; ++degree)
+    {
+      double sum = 0.0;
+      for (int i = 0; i < n; ++i)
+      {
+        sum += rule.weights[i] * std::pow(rule.nodes[i], degree);
+      }
+      const double exact = degree % 2 == 1 ? 0.0 : std::tgamma(degree / 2 + 0.5);
+      const double rel = (n <= 12 || degree <= 16) ? 1e-12 : 1e-6;
+      EXPECT_NEAR(sum, exact, rel * std::max(1.0, std::tgamma(degree / 2 + 0.5)))
+        << "degree " << degree;
+    }
+  }
+  // Closed form for n = 2: nodes +-1/sqrt(2), weights sqrt(pi)/2; int x^2 e^{-x^2} = sqrt(pi)/2.
+  const GaussHermiteRule two = gaussHermite(2);
+  EXPECT_NEAR(two.nodes[1], 1.0 / std::sqrt(2.0), 1e-14);
+  EXPECT_NEAR(two.weights[0], std::sqrt(kPi) / 2, 1e-14);
+  EXPECT_THROW(gaussHermite(0), std::invalid_argument);
+  EXPECT_THROW(gaussHermite(65), std::invalid_argument);
+}
+
+// Truth: when maxima are sought the projection may find a maximum or report that there is none,
+// but it must never hand back a minimum (flat line, Levin, start 2h above: n is tangent there).
+TEST(Projection, SeekingMaximaNeverReturnsMinimum)
+{
+  const double h = 1.0;
+  PointIndex index(lineCloud(12 * h, 0.1 * h), 2);
+  auto s = makeSurface(Variant::LevinMLS, index, params(h));
+  ProjectionOptions opt;
+  opt.seekMaxima = true;
+  for (const Vec3& start : { Vec3(0.0, 2 * h, 0), Vec3(0.37 * h, 2 * h, 0), Vec3(-1.3 * h, -2 * h, 0) })
+  {
+    const ProjectionResult r = project(*s, start, opt);
+    SCOPED_TRACE(stopReasonName(r.reason));
+    EXPECT_NE(r.type, ExtremumType::Minimum) << "at " << r.point.transpose();
+    EXPECT_TRUE(r.type == ExtremumType::Maximum || r.reason == StopReason::NoExtremum)
+      << "type " << static_cast<int>(r.type) << " at " << r.point.transpose();
+  }
+}

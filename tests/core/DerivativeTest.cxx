@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Analytic derivatives against central differences on small random clouds.
+//
+// Central difference with step eps = 1e-4 h: truncation error eps^2/6 f''' ~ 1e-9 relative for
+// functions varying on the scale h, rounding ~1e-16 / 1e-4 = 1e-12 relative; so 1e-6 relative is a
+// real check of the formula. cutoff = 6 makes the neglected Gaussian mass exp(-36) ~ 2e-16, so a
+// neighbour entering or leaving within the step cannot produce a visible jump.
+
+#include "TestClouds.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace pss;
+using namespace pss_test;
+
+namespace
+{
+
+constexpr double kRelTol = 1e-6;
+
+struct Cloud
+{
+  std::vector<Vec3> pts;
+  int dim;
+  double h;
+};
+
+Cloud makeCloud(int dim)
+{
+  const double h = dim == 2 ? 0.6 : 1.4;
+  return { randomBox(dim == 2 ? 80 : 150, dim, 4 * h, dim == 2 ? 41u : 42u), dim, h };
+}
+
+/// Query points at distance 0.3h..2h from the nearest cloud point.
+std::vector<Vec3> queries(const Cloud& c, int count, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<std::size_t> pick(0, c.pts.size() - 1);
+  std::uniform_real_distribution<double> dist(0.3, 2.0);
+  std::vector<Vec3> out;
+  while (static_cast<int>(out.size()) < count)
+  {
+    const Vec3 x = c.pts[pick(rng)] + dist(rng) * c.h * randomUnit(rng, c.dim);
+    const double d = std::sqrt(bruteNearestSq(c.pts, x));
+    if (d >= 0.3 * c.h && d <= 2.0 * c.h)
+    {
+      out.push_back(x);
+    }
+  }
+  return out;
+}
+
+/// |analytic - numeric| <= 1e-6 * max(|analytic|, natural scale).
+void expectClose(double analytic, double numeric, double scale, const std::string& what)
+{
+  EXPECT_NEAR(analytic, numeric, kRelTol * std::max(std::abs(analytic), scale))
+    << what << ": analytic " << analytic << " vs central difference " << numeric;
+}
+
+void checkLineSlopes(int dim)
+{
+  const Cloud c = makeCloud(dim);
+  PointIndex index(c.pts, dim);
+  const double eps = 1e-4 * c.h;
+  for (Variant v : allVariants())
+  {
+    auto s = makeSurface(v, index, params(c.h, 6.0));
+    std::mt19937 rng(77);
+    const int n = (dim == 3 && (v == Variant::Integral || v == Variant::Delta)) ? 10 : 25;
+    for (const Vec3& x : queries(c, n, 55u))
+    {
+      const Vec3 a = randomUnit(rng, dim);
+      const LineSample ls = s->lineSample(x, a);
+      const double ep = s->energy(x + eps * a, a);
+      const double em = s->energy(x - eps * a, a);
+      const double e0 = s->energy(x, a);
+      expectClose(ls.trueValue(), e0, 0.0, std::string(variantName(v)) + " value");
+      expectClose(ls.trueSlope(), (ep - em) / (2 * eps), e0 / c.h,
+        std::string(variantName(v)) + " slope dim " + std::to_string(dim));
+    }
+  }
+}
+
+void checkImplicitG(int dim)
+{
+  const Cloud c = makeCloud(dim);
+  PointIndex index(c.pts, dim);
+  const double eps = 1e-4 * c.h;
+  const Orientation orient = Orientation::awayFromCentroid(index);
+  for (Variant v : allVariants())
+  {
+    auto s = makeSurface(v, index, params(c.h, 6.0));
+    const int n = (dim == 3 && (v == Variant::Integral || v == Variant::Delta)) ? 6 : 20;
+    int tested = 0;
+    for (const Vec3& x : queries(c, n, 66u))
+    {
+      const ImplicitSample is = evaluateImplicit(*s, x, orient);
+      if (!is.direction.defined)
+      {
+        continue;
+      }
+      ++tested;
+      const Vec3 nn = is.direction.n;
+      EXPECT_NEAR(nn.norm(), 1.0, 1e-12);
+      const double e0 = s->energy(x, nn);
+      expectClose(is.energy, e0, 0.0, std::string(variantName(v)) + " energy");
+      const double fd = (s->energy(x + eps * nn, nn) - s->energy(x - eps * nn, nn)) / (2 * eps);
+      expectClose(is.g, fd, e0 / c.h, std::string(variantName(v)) + " g dim " + std::to_string(dim));
+      // The second derivative along n (a central difference of the slope inside the core) must
+      // agree with the second difference of the energy to the accuracy of two differences: 1e-3.
+      const double fd2 = (s->energy(x + 10 * eps * nn, nn) - 2 * e0 + s->energy(x - 10 * eps * nn, nn)) /
+        (100 * eps * eps);
+      EXPECT_NEAR(is.curvature, fd2, 1e-3 * std::max(std::abs(fd2), e0 / (c.h * c.h)))
+        << variantName(v) << " curvature";
+      if (is.curvature > 1e-3 * e0 / (c.h * c.h))
+      {
+        EXPECT_EQ(is.type, ExtremumType::Minimum);
+      }
+      else if (is.curvature < -1e-3 * e0 / (c.h * c.h))
+      {
+        EXPECT_EQ(is.type, ExtremumType::Maximum);
+      }
+    }
+    EXPECT_GE(tested, n / 2) << variantName(v) << ": too many undefined directions";
+  }
+}
+
+void checkDistanceGradient(int dim)
+{
+  const Cloud c = makeCloud(dim);
+  PointIndex index(c.pts, dim);
+  DistanceField field(index, params(c.h, 6.0));
+  const double eps = 1e-4 * c.h;
+  for (const Vec3& x : queries(c, 40, 88u))
+  {
+    Vec3 grad;
+    const double delta = field.deltaAndGradient(x, grad);
+    for (int k = 0; k < dim; ++k)
+    {
+      const Vec3 e = Vec3::Unit(k);
+      const double fd = (field.delta(x + eps * e) - field.delta(x - eps * e)) / (2 * eps);
+      expectClose(grad[k], fd, std::max(grad.norm(), delta / c.h), "d delta / dx" + std::to_string(k));
+    }
+    if (dim == 2)
+    {
+      EXPECT_EQ(grad.z(), 0.0);
+    }
+  }
+}
+
+} // namespace
+
+// Truth: LineSample.slope = d/dt e(y + t a, a) (its definition); 1e-6 relative (see top).
+TEST(Derivatives, LineSlopeMatchesCentralDifference2D)
+{
+  checkLineSlopes(2);
+}
+
+// Truth: same in 3D.
+TEST(Derivatives, LineSlopeMatchesCentralDifference3D)
+{
+  checkLineSlopes(3);
+}
+
+// Truth: g = d/dt e(x + t n, n) at 0 with n = n(x) fixed (Eq. 2); 1e-6 relative.
+TEST(Derivatives, ImplicitGMatchesCentralDifference2D)
+{
+  checkImplicitG(2);
+}
+
+// Truth: same in 3D.
+TEST(Derivatives, ImplicitGMatchesCentralDifference3D)
+{
+  checkImplicitG(3);
+}
+
+// Truth: DistanceField gradient = partial derivatives of delta; 1e-6 relative.
+TEST(Derivatives, DistanceGradientMatchesCentralDifference2D)
+{
+  checkDistanceGradient(2);
+}
+
+// Truth: same in 3D.
+TEST(Derivatives, DistanceGradientMatchesCentralDifference3D)
+{
+  checkDistanceGradient(3);
+}
