@@ -6,10 +6,13 @@ set -euo pipefail
 # ParaView 5.11's development package brings the VTK 9.2 we build against (Debian's libvtk9-dev
 # conflicts with python3-paraview); its CMake config needs python3-paraview and qtbase5-dev, and
 # the VTK components we use need libdouble-conversion-dev, which paraview-dev does not pull in.
+# Building the plugin also needs MPI (ParaView's VTK::mpi links MPI::MPI_C), Qt5Help and Qt's
+# xmlpatterns (the server-manager XML is turned into help pages).
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libnanoflann-dev libgtest-dev
   paraview-dev python3-paraview qtbase5-dev libdouble-conversion-dev
+  mpi-default-dev qttools5-dev qtxmlpatterns5-dev-tools
   xvfb xauth
 )
 
