@@ -27,6 +27,7 @@
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
+#include "vtkExecutive.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
@@ -85,6 +86,7 @@ struct Run
 void AddCommonOptions(OptionTable& t, Run& run)
 {
   t.Value("output", "FILE", "output file (.vtp .vtu .vti .ply .csv .xyz); required", [&](const std::string& v) { run.output = v; });
+  t.Value("o", "FILE", "same as --output", [&](const std::string& v) { run.output = v; });
   t.Value("threads", "N", "worker threads; 0 = all cores (default 0)", [&](const std::string& v) {
     run.threads = pss_cli::ToInt("threads", v);
     if (run.threads < 0)
@@ -481,7 +483,7 @@ int Glyphs(const std::vector<std::string>& args)
   glyphs->SetInputData(0, cloud);
   if (!samplesPath.empty())
   {
-    glyphs->SetInputData(1, ReadPointSet(run, samplesPath, "sample point set"));
+    glyphs->SetSamplePointsData(ReadPointSet(run, samplesPath, "sample point set"));
   }
   run.Stage("compute", [&]() {
     Execute(run, glyphs);

@@ -48,7 +48,10 @@ bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(
       body(i);
     }
     const vtkIdType total = done.fetch_add(end - begin) + (end - begin);
-    if (algorithm && vtkSMPTools::GetSingleThread())
+    // When the whole range fits one chunk, vtkSMPTools::For runs it inline, outside any parallel
+    // scope, where GetSingleThread() must not be asked (it crashes with VTK 9.2's STDThread).
+    const bool reporter = !vtkSMPTools::IsParallelScope() || vtkSMPTools::GetSingleThread();
+    if (algorithm && reporter)
     {
       algorithm->UpdateProgress(progressBegin + (progressEnd - progressBegin) * double(total) / double(n));
       if (algorithm->GetAbortExecute())

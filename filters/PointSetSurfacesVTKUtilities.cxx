@@ -2,6 +2,10 @@
 #include "PointSetSurfacesVTKUtilities.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIntArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkPointSetSurface.h"
 
@@ -39,6 +43,16 @@ vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n)
   auto cells = vtkSmartPointer<vtkCellArray>::New();
   cells->SetData(offsets, connectivity);
   return cells;
+}
+
+void AddSurfaceFieldData(vtkDataObject* output, vtkPointSetSurface* surface)
+{
+  auto scale = NewArray<vtkDoubleArray>("ScaleFactor", 1, 1);
+  scale->SetValue(0, surface->GetEffectiveScale());
+  auto dimension = NewArray<vtkIntArray>("Dimension", 1, 1);
+  dimension->SetValue(0, surface->GetEffectiveDimension());
+  output->GetFieldData()->AddArray(scale);
+  output->GetFieldData()->AddArray(dimension);
 }
 
 void WarnAboutSkippedPoints(vtkAlgorithm* algorithm, vtkPointSetSurface* surface)

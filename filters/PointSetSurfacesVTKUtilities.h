@@ -17,6 +17,7 @@
 #include <vector>
 
 class vtkAlgorithm;
+class vtkDataObject;
 class vtkPointSetSurface;
 
 namespace pss_vtk
@@ -38,6 +39,10 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, vtkIdType tuples, int compone
 
 /// One vertex cell per point 0..n-1.
 vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n);
+
+/// Records the h and the dimension a prepared @p surface used as field data "ScaleFactor" and
+/// "Dimension" of @p output, so files written downstream say how they were made.
+void AddSurfaceFieldData(vtkDataObject* output, vtkPointSetSurface* surface);
 
 /// A warning on @p algorithm when the prepared cloud had points with NaN/Inf coordinates.
 void WarnAboutSkippedPoints(vtkAlgorithm* algorithm, vtkPointSetSurface* surface);

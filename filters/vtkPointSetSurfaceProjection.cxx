@@ -73,6 +73,17 @@ int vtkPointSetSurfaceProjection::FillInputPortInformation(int port, vtkInformat
   return 1;
 }
 
+bool vtkPointSetSurfaceProjection::BeginProjection(const pss::SurfaceDefinition&, vtkIdType)
+{
+  return true;
+}
+
+pss::ProjectionResult vtkPointSetSurfaceProjection::ProjectPoint(
+  vtkIdType, const double start[3], const pss::SurfaceDefinition& surface, const pss::ProjectionOptions& options)
+{
+  return pss::project(surface, pss::Vec3(start[0], start[1], start[2]), options);
+}
+
 bool vtkPointSetSurfaceProjection::AddPointArrays(
   vtkPointSet*, const std::vector<pss::ProjectionResult>&, vtkPointData*)
 {
@@ -113,8 +124,13 @@ int vtkPointSetSurfaceProjection::RequestData(
 
   const std::vector<pss::Vec3> startPoints = pss_vtk::ToVectors(starts->GetPoints());
   const vtkIdType n = static_cast<vtkIdType>(startPoints.size());
+  if (!this->BeginProjection(surface, n))
+  {
+    return 0;
+  }
   std::vector<pss::ProjectionResult> results(startPoints.size());
-  if (!pss_vtk::ParallelFor(this, n, [&](vtkIdType i) { results[i] = pss::project(surface, startPoints[i], options); }))
+  if (!pss_vtk::ParallelFor(
+        this, n, [&](vtkIdType i) { results[i] = this->ProjectPoint(i, startPoints[i].data(), surface, options); }))
   {
     return 1; // aborted: leave the outputs empty
   }
@@ -166,6 +182,7 @@ int vtkPointSetSurfaceProjection::RequestData(
     outPD->AddArray(a);
   }
   outPD->SetNormals(normal);
+  pss_vtk::AddSurfaceFieldData(output, this->Surface);
   if (!this->AddPointArrays(starts, results, outPD))
   {
     output->Initialize();

@@ -43,6 +43,8 @@ class vtkPointSetSurface;
 #ifndef __VTK_WRAP__
 namespace pss
 {
+class SurfaceDefinition;
+struct ProjectionOptions;
 struct ProjectionResult;
 }
 #endif
@@ -123,6 +125,22 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 #ifndef __VTK_WRAP__
+  /**
+   * Hook for subclasses, called once per update before the per-point loop, with the prepared
+   * surface and the number of start points (to validate parameters, size per-point storage).
+   * Return false (after vtkErrorMacro) to fail the update. The default does nothing.
+   */
+  virtual bool BeginProjection(const pss::SurfaceDefinition& surface, vtkIdType numberOfStarts);
+
+  /**
+   * Hook for subclasses: the per-point work for start point @p i at @p start. Called from several
+   * threads at once, exactly once per i: an override may only write state belonging to i. It must
+   * return the projection of @p start with @p options (the standard arrays are made from it).
+   * The default is pss::project.
+   */
+  virtual pss::ProjectionResult ProjectPoint(vtkIdType i, const double start[3],
+    const pss::SurfaceDefinition& surface, const pss::ProjectionOptions& options);
+
   /**
    * Hook for subclasses: add arrays computed from the projections to the output point data.
    * Called after the standard arrays; return false (after vtkErrorMacro) to fail the update.

@@ -1,0 +1,306 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "PointSetSurfacesFieldEvaluation.h"
+
+#include "vtkCellType.h"
+#include "vtkDataSet.h"
+#include "vtkIdList.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkRectilinearGrid.h"
+#include "vtkStructuredGrid.h"
+
+#include "pss/PointIndex.h"
+#include "pss/SurfaceDefinition.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <queue>
+#include <tuple>
+#include <vector>
+
+namespace pss_vtk
+{
+
+bool MakeOrientation(int rule, const double referencePoint[3], const double referenceDirection[3],
+  const pss::PointIndex& index, pss::Orientation& out, std::string& error)
+{
+  switch (rule)
+  {
+    case ORIENT_AWAY_FROM_CENTROID:
+      out = pss::Orientation::awayFromCentroid(index);
+      return true;
+    case ORIENT_AWAY_FROM_POINT:
+    {
+      const pss::Vec3 p(referencePoint[0], referencePoint[1], referencePoint[2]);
+      if (!pss::isFinite(p))
+      {
+        error = "the ReferencePoint has a NaN or infinite coordinate";
+        return false;
+      }
+      out.rule = pss::Orientation::Rule::AwayFromPoint;
+      out.reference = p;
+      return true;
+    }
+    case ORIENT_ALONG_DIRECTION:
+    {
+      const pss::Vec3 d(referenceDirection[0], referenceDirection[1], referenceDirection[2]);
+      const double norm = d.norm();
+      if (!std::isfinite(norm) || !(norm > 0.0))
+      {
+        error = "the ReferenceDirection must be a finite, non-zero vector";
+        return false;
+      }
+      out.rule = pss::Orientation::Rule::AlongDirection;
+      out.reference = d / norm;
+      return true;
+    }
+    default:
+      error = "unknown orientation mode " + std::to_string(rule);
+      return false;
+  }
+}
+
+FieldEvaluator::FieldEvaluator(const pss::SurfaceDefinition& surface, const pss::Orientation& orientation)
+  : Definition(surface)
+  , Orient(orientation)
+  , Distance(surface.index(), surface.parameters())
+{
+}
+
+namespace
+{
+// Replaces a non-finite value by 0 and reports whether it was finite.
+bool Sanitize(double& v)
+{
+  if (std::isfinite(v))
+  {
+    return true;
+  }
+  v = 0.0;
+  return false;
+}
+}
+
+FieldValues FieldEvaluator::Evaluate(const double xIn[3], unsigned parts) const
+{
+  FieldValues out;
+  const pss::Vec3 x(xIn[0], xIn[1], xIn[2]);
+  if (!pss::isFinite(x))
+  {
+    return out; // valid = false, everything 0
+  }
+  bool finite = true;
+  if (parts & FIELD_DIRECTIONAL)
+  {
+    const pss::ImplicitSample s = pss::evaluateImplicit(this->Definition, x, this->Orient);
+    if (s.direction.n.allFinite())
+    {
+      out.normal = s.direction.n;
+    }
+    else
+    {
+      finite = false;
+    }
+    out.energy = s.energy;
+    out.g = s.g;
+    out.stability = s.direction.stability;
+    out.extremumType = static_cast<int>(s.type);
+    finite = Sanitize(out.energy) && finite;
+    finite = Sanitize(out.g) && finite;
+    finite = Sanitize(out.stability) && finite;
+  }
+  if (parts & FIELD_DELTA)
+  {
+    out.delta = this->Distance.delta(x);
+    finite = Sanitize(out.delta) && finite;
+  }
+  out.valid = finite;
+  if (!finite)
+  {
+    out.normal.setZero();
+    out.stability = 0.0;
+    out.extremumType = 0;
+  }
+  return out;
+}
+
+namespace
+{
+
+// Neighbours of every point, compressed (CSR): neighbours of i are Adj[Start[i] .. Start[i+1]).
+struct PointGraph
+{
+  std::vector<vtkIdType> Start;
+  std::vector<vtkIdType> Adj;
+};
+
+// Structured datasets: the 2 * dim axis neighbours (i +- 1, j +- 1, k +- 1).
+bool StructuredDimensions(vtkDataSet* mesh, int dims[3])
+{
+  if (auto* image = vtkImageData::SafeDownCast(mesh))
+  {
+    image->GetDimensions(dims);
+    return true;
+  }
+  if (auto* rect = vtkRectilinearGrid::SafeDownCast(mesh))
+  {
+    rect->GetDimensions(dims);
+    return true;
+  }
+  if (auto* grid = vtkStructuredGrid::SafeDownCast(mesh))
+  {
+    grid->GetDimensions(dims);
+    return true;
+  }
+  return false;
+}
+
+PointGraph BuildGraph(vtkDataSet* mesh)
+{
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  std::vector<std::pair<vtkIdType, vtkIdType>> edges;
+  int dims[3];
+  if (StructuredDimensions(mesh, dims) && vtkIdType(dims[0]) * dims[1] * dims[2] == n)
+  {
+    const vtkIdType sx = 1, sy = dims[0], sz = vtkIdType(dims[0]) * dims[1];
+    for (int k = 0; k < dims[2]; ++k)
+    {
+      for (int j = 0; j < dims[1]; ++j)
+      {
+        for (int i = 0; i < dims[0]; ++i)
+        {
+          const vtkIdType id = i * sx + j * sy + k * sz;
+          if (i + 1 < dims[0])
+          {
+            edges.emplace_back(id, id + sx);
+          }
+          if (j + 1 < dims[1])
+          {
+            edges.emplace_back(id, id + sy);
+          }
+          if (k + 1 < dims[2])
+          {
+            edges.emplace_back(id, id + sz);
+          }
+        }
+      }
+    }
+  }
+  else
+  {
+    // Points consecutive in a cell are neighbours; polygons and 3D cells close the ring, lines
+    // and poly-lines do not (their ends are not adjacent), vertices connect nothing.
+    vtkNew<vtkIdList> ids;
+    const vtkIdType cells = mesh->GetNumberOfCells();
+    for (vtkIdType c = 0; c < cells; ++c)
+    {
+      const int type = mesh->GetCellType(c);
+      if (type == VTK_EMPTY_CELL || type == VTK_VERTEX || type == VTK_POLY_VERTEX)
+      {
+        continue;
+      }
+      mesh->GetCellPoints(c, ids);
+      const vtkIdType m = ids->GetNumberOfIds();
+      const bool open = type == VTK_LINE || type == VTK_POLY_LINE || m < 3;
+      for (vtkIdType a = 0; a + (open ? 1 : 0) < m; ++a)
+      {
+        const vtkIdType p = ids->GetId(a);
+        const vtkIdType q = ids->GetId((a + 1) % m);
+        if (p != q && p >= 0 && q >= 0 && p < n && q < n)
+        {
+          edges.emplace_back(p, q);
+        }
+      }
+    }
+  }
+
+  PointGraph g;
+  g.Start.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (const auto& e : edges)
+  {
+    ++g.Start[e.first + 1];
+    ++g.Start[e.second + 1];
+  }
+  std::partial_sum(g.Start.begin(), g.Start.end(), g.Start.begin());
+  g.Adj.resize(static_cast<std::size_t>(g.Start.back()));
+  std::vector<vtkIdType> fill(g.Start.begin(), g.Start.end() - 1);
+  for (const auto& e : edges)
+  {
+    g.Adj[fill[e.first]++] = e.second;
+    g.Adj[fill[e.second]++] = e.first;
+  }
+  return g;
+}
+
+} // namespace
+
+vtkIdType PropagateOrientation(vtkDataSet* mesh, double* normals, double* g, const double* stability)
+{
+  const vtkIdType n = mesh ? mesh->GetNumberOfPoints() : 0;
+  if (n == 0)
+  {
+    return 0;
+  }
+  const PointGraph graph = BuildGraph(mesh);
+  auto normal = [&](vtkIdType i) { return Eigen::Map<pss::Vec3>(normals + 3 * i); };
+  auto usable = [&](vtkIdType i) { return normal(i).squaredNorm() > 0.0; };
+
+  // Seeds: the most stable point of each component first.
+  std::vector<vtkIdType> order;
+  order.reserve(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (usable(i))
+    {
+      order.push_back(i);
+    }
+  }
+  std::stable_sort(order.begin(), order.end(), [&](vtkIdType a, vtkIdType b) { return stability[a] > stability[b]; });
+
+  std::vector<char> done(static_cast<std::size_t>(n), 0);
+  // (weight, point to orient, its already oriented neighbour): the heaviest edge first.
+  using Edge = std::tuple<double, vtkIdType, vtkIdType>;
+  std::priority_queue<Edge> front;
+  auto pushNeighbours = [&](vtkIdType i) {
+    for (vtkIdType k = graph.Start[i]; k < graph.Start[i + 1]; ++k)
+    {
+      const vtkIdType j = graph.Adj[k];
+      if (!done[j] && usable(j))
+      {
+        front.emplace(std::abs(normal(i).dot(normal(j))), j, i);
+      }
+    }
+  };
+  vtkIdType flipped = 0;
+  for (const vtkIdType seed : order)
+  {
+    if (done[seed])
+    {
+      continue;
+    }
+    done[seed] = 1;
+    pushNeighbours(seed);
+    while (!front.empty())
+    {
+      const vtkIdType j = std::get<1>(front.top());
+      const vtkIdType parent = std::get<2>(front.top());
+      front.pop();
+      if (done[j])
+      {
+        continue;
+      }
+      done[j] = 1;
+      if (normal(j).dot(normal(parent)) < 0.0)
+      {
+        normal(j) *= -1.0; // n and g change sign together (see the header)
+        g[j] = -g[j];
+        ++flipped;
+      }
+      pushNeighbours(j);
+    }
+  }
+  return flipped;
+}
+
+}

@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkPointSetSurfaceEnergyGlyphs
+ * @brief   polar plots of the energy e(x, a) over all directions a, and the best-fitting line or
+ *          plane at x (Amenta & Kil, Figures 4 and 5)
+ *
+ * Input 0 is the point cloud that defines the surface (any vtkPointSet); input 1, optional, holds
+ * the sample points x (without it every cloud point is a sample: give sample points for large
+ * clouds). Which surface definition, at which scale, is GetSurface()'s business, as for
+ * vtkPointSetSurfaceProjection.
+ *
+ * Output 0, the energy glyphs: for each sample x, the points x + c e(x, a) a over unit directions
+ * a, where e is the energy of the surface definition.
+ * - 2D: Resolution directions a_k = (cos 2 pi k/R, sin 2 pi k/R, 0) on the full circle, joined into
+ *   one closed polyline (R + 1 point ids, the last repeating the first).
+ * - 3D: a latitude-longitude sphere of directions with Resolution longitude segments and
+ *   max(2, Resolution/2) latitude bands (2 + (bands - 1) * Resolution directions, poles included),
+ *   triangulated with outward orientation.
+ * Since a is unoriented, e(x, a) = e(x, -a): with an even Resolution, both a and -a are sampled
+ * and each glyph is centrally symmetric about x. The narrowest direction of a glyph is n(x): a
+ * dumbbell means a strong choice of n, an ellipse a weaker one, a circle or square an unstable
+ * one (Figure 4).
+ *
+ * The constant c (ScaleMode):
+ * - SCALE_GLOBAL (default): c = GlyphSize * h / (largest e over all samples and directions), fixed
+ *   within the output, as in the paper ("c remains fixed within each image"): glyph sizes compare
+ *   energies between samples. Where Levin's energy underflows (far from the cloud) the glyphs
+ *   collapse onto their sample points: that is the paper's point about it. GetGlyphScale() is c.
+ * - SCALE_PER_GLYPH: each glyph is normalized on its own, its widest direction reaching
+ *   GlyphSize * h: shapes compare, sizes do not. Computed from the core's scaled energies
+ *   (pss::LineSample), so it stays exact where the true energies underflow to 0.
+ *
+ * Output 1, the best fit at each sample: the line segment (2D) or square plane patch (3D) through
+ * x normal to n(x), of half-length (half side) SegmentLength * h: the best-fitting line of
+ * Figure 5. Samples where n(x) is not a finite non-zero vector get no segment; a defined-but-weak
+ * n is flagged by its Stability.
+ *
+ * Arrays: `Energy` on glyph points (e(x, a) at its true scale; may underflow to 0, never NaN);
+ * `SampleId` (index of the sample in input 1, or in the cloud) and `Stability` (of n(x)) on the
+ * cells of both outputs; `Normal` (n(x), oriented away from the cloud's centroid) on the cells of
+ * output 1. Sample points with NaN or infinite coordinates get no glyph and no segment (a warning
+ * counts them); an empty set of samples gives empty outputs; an empty cloud is an error. For a 2D
+ * cloud every sample is taken in the xy-plane (z = 0), as by every query of the core.
+ *
+ * @sa vtkPointSetSurface vtkPointSetSurfaceProjection
+ */
+#ifndef vtkPointSetSurfaceEnergyGlyphs_h
+#define vtkPointSetSurfaceEnergyGlyphs_h
+
+#include "PointSetSurfacesFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class vtkPointSetSurface;
+
+class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceEnergyGlyphs : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkPointSetSurfaceEnergyGlyphs* New();
+  vtkTypeMacro(vtkPointSetSurfaceEnergyGlyphs, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum ScaleModeType
+  {
+    SCALE_GLOBAL = 0,
+    SCALE_PER_GLYPH = 1
+  };
+
+  ///@{
+  /// The surface definition and its parameters (never null; a default one is created).
+  void SetSurface(vtkPointSetSurface* surface);
+  vtkGetObjectMacro(Surface, vtkPointSetSurface);
+  ///@}
+
+  /// Sample points (input 1). Without them every cloud point is a sample.
+  void SetSamplePointsConnection(vtkAlgorithmOutput* output);
+  void SetSamplePointsData(vtkDataObject* data);
+
+  ///@{
+  /**
+   * Directions per glyph: segments of the circle (2D) or longitude segments of the sphere (3D),
+   * within [4, 1024]. Default 72 (every 5 degrees). Keep it even for centrally symmetric glyphs;
+   * in 3D a glyph has about Resolution^2 / 2 directions, so 24 to 36 is usually plenty.
+   */
+  vtkSetClampMacro(Resolution, int, 4, 1024);
+  vtkGetMacro(Resolution, int);
+  ///@}
+
+  ///@{
+  /// Size of the largest glyph (SCALE_GLOBAL) or of every glyph (SCALE_PER_GLYPH), in units of h.
+  /// Within [0, 1e6]. Default 1.
+  vtkSetClampMacro(GlyphSize, double, 0.0, 1e6);
+  vtkGetMacro(GlyphSize, double);
+  ///@}
+
+  ///@{
+  /// SCALE_GLOBAL (one c for the whole output, default) or SCALE_PER_GLYPH.
+  vtkSetClampMacro(ScaleMode, int, SCALE_GLOBAL, SCALE_PER_GLYPH);
+  vtkGetMacro(ScaleMode, int);
+  void SetScaleModeToGlobal() { this->SetScaleMode(SCALE_GLOBAL); }
+  void SetScaleModeToPerGlyph() { this->SetScaleMode(SCALE_PER_GLYPH); }
+  ///@}
+
+  ///@{
+  /// Half-length of the best-fit segment (half side of the patch), in units of h, within
+  /// [0, 1e6]. Default 1.
+  vtkSetClampMacro(SegmentLength, double, 0.0, 1e6);
+  vtkGetMacro(SegmentLength, double);
+  ///@}
+
+  /// The h used by the last update (after automatic scaling).
+  double GetEffectiveScale() const;
+
+  /// The c of the last update in SCALE_GLOBAL mode (0 when every energy was 0); 0 in SCALE_PER_GLYPH.
+  double GetGlyphScale() const { return this->GlyphScale; }
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkPointSetSurfaceEnergyGlyphs();
+  ~vtkPointSetSurfaceEnergyGlyphs() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkPointSetSurface* Surface = nullptr;
+  int Resolution = 72;
+  double GlyphSize = 1.0;
+  int ScaleMode = SCALE_GLOBAL;
+  double SegmentLength = 1.0;
+  double GlyphScale = 0.0;
+
+private:
+  vtkPointSetSurfaceEnergyGlyphs(const vtkPointSetSurfaceEnergyGlyphs&) = delete;
+  void operator=(const vtkPointSetSurfaceEnergyGlyphs&) = delete;
+};
+
+#endif

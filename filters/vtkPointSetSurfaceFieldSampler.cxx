@@ -1,0 +1,514 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPointSetSurfaceFieldSampler.h"
+
+#include "PointSetSurfacesFieldEvaluation.h"
+#include "PointSetSurfacesSMP.h"
+#include "PointSetSurfacesVTKUtilities.h"
+#include "vtkPointSetSurface.h"
+
+#include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "pss/Domain.h"
+#include "pss/PointIndex.h"
+#include "pss/SurfaceDefinition.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkPointSetSurfaceFieldSampler);
+vtkCxxSetObjectMacro(vtkPointSetSurfaceFieldSampler, Surface, vtkPointSetSurface);
+
+namespace
+{
+// Limits of the generated grid: vtkIdType-safe counts and a memory ceiling for the output arrays.
+constexpr std::uint64_t kMaxSamples = std::uint64_t(1) << 31;
+constexpr std::uint64_t kMaxOutputBytes = std::uint64_t(4) << 30;
+// Normal (3 doubles), Energy, Delta, ImplicitG, Stability (doubles), ExtremumType (int), Valid
+// (byte), DomainLabel (int).
+constexpr std::uint64_t kBytesPerSample = 3 * 8 + 4 * 8 + 4 + 1 + 4;
+
+// pss_vtk::ParallelFor crashes with VTK 9.2's STDThread backend when vtkSMPTools::For runs its
+// only chunk inline (n == 1): vtkSMPTools::GetSingleThread() is then called outside the thread
+// pool. A single sample is computed directly until the helper handles that case.
+bool ParallelForGuarded(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType)>& body,
+  double progressBegin, double progressEnd)
+{
+  if (n == 1)
+  {
+    body(0);
+    return true;
+  }
+  return pss_vtk::ParallelFor(algorithm, n, body, progressBegin, progressEnd);
+}
+}
+
+vtkPointSetSurfaceFieldSampler::vtkPointSetSurfaceFieldSampler()
+{
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(1);
+  this->Surface = vtkPointSetSurface::New();
+}
+
+vtkPointSetSurfaceFieldSampler::~vtkPointSetSurfaceFieldSampler()
+{
+  this->SetSurface(nullptr);
+}
+
+void vtkPointSetSurfaceFieldSampler::SetSourceConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
+void vtkPointSetSurfaceFieldSampler::SetSourceData(vtkDataObject* data)
+{
+  this->SetInputData(1, data);
+}
+
+vtkDataObject* vtkPointSetSurfaceFieldSampler::GetSource()
+{
+  if (this->GetNumberOfInputConnections(1) < 1)
+  {
+    return nullptr;
+  }
+  return this->GetExecutive()->GetInputData(1, 0);
+}
+
+double vtkPointSetSurfaceFieldSampler::GetEffectiveScale() const
+{
+  return this->Surface ? this->Surface->GetEffectiveScale() : 0.0;
+}
+
+vtkMTimeType vtkPointSetSurfaceFieldSampler::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  if (this->Surface)
+  {
+    t = std::max(t, this->Surface->GetMTime());
+  }
+  return t;
+}
+
+int vtkPointSetSurfaceFieldSampler::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1); // not needed with GenerateSamplingGrid
+  }
+  else
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  }
+  return 1;
+}
+
+bool vtkPointSetSurfaceFieldSampler::CheckSampleDimensions()
+{
+  const int* d = this->SampleDimensions;
+  if (d[0] < 1 || d[1] < 1 || d[2] < 1)
+  {
+    vtkErrorMacro(<< "SampleDimensions must all be >= 1, not " << d[0] << " x " << d[1] << " x " << d[2]);
+    return false;
+  }
+  // In floating point: the product of three ints can overflow 64 bits (2^30 cubed is 2^90).
+  const double count = double(d[0]) * double(d[1]) * double(d[2]);
+  if (count > double(kMaxSamples) || count * double(kBytesPerSample) > double(kMaxOutputBytes))
+  {
+    vtkErrorMacro(<< "SampleDimensions " << d[0] << " x " << d[1] << " x " << d[2] << " ask for " << count
+                  << " samples (about " << count * double(kBytesPerSample) / double(1u << 20)
+                  << " MiB of output); the limit is 2^31 samples and 4 GiB");
+    return false;
+  }
+  return true;
+}
+
+bool vtkPointSetSurfaceFieldSampler::ComputeGridGeometry(
+  vtkPointSet* cloud, double origin[3], double spacing[3], bool quiet)
+{
+  // Bounds of the finite cloud points (the surface skips the others too).
+  double lo[3] = { std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity() };
+  double hi[3] = { -lo[0], -lo[1], -lo[2] };
+  const vtkIdType n = cloud->GetNumberOfPoints();
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    cloud->GetPoint(i, p);
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], p[a]);
+        hi[a] = std::max(hi[a], p[a]);
+      }
+    }
+  }
+  if (!(lo[0] <= hi[0]))
+  {
+    if (!quiet)
+    {
+      vtkErrorMacro(<< "the point cloud has no point with finite coordinates");
+    }
+    return false;
+  }
+  const double margin = this->SamplingMargin * this->Surface->GetEffectiveScale();
+  double largest = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const int d = this->SampleDimensions[a];
+    if (d == 1)
+    {
+      origin[a] = 0.5 * (lo[a] + hi[a]); // the mid-plane (for a planar cloud, its plane)
+      spacing[a] = 0.0;                  // set below
+      continue;
+    }
+    origin[a] = lo[a] - margin;
+    spacing[a] = (hi[a] + margin - origin[a]) / (d - 1);
+    if (!std::isfinite(origin[a]) || !std::isfinite(spacing[a]) || !(spacing[a] > 0.0))
+    {
+      if (!quiet)
+      {
+        vtkErrorMacro(<< "the sampling grid is degenerate along axis " << a << " (cloud from " << lo[a] << " to "
+                      << hi[a] << ", margin " << margin
+                      << "): use a SamplingMargin > 0 or a SampleDimension of 1 there");
+      }
+      return false;
+    }
+    largest = std::max(largest, spacing[a]);
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (this->SampleDimensions[a] == 1)
+    {
+      spacing[a] = largest > 0.0 ? largest : 1.0; // any positive value: one layer of samples
+    }
+  }
+  return true;
+}
+
+int vtkPointSetSurfaceFieldSampler::RequestDataObject(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkDataObject* output = outInfo->Get(vtkDataObject::DATA_OBJECT());
+  vtkDataSet* input =
+    inputVector[0]->GetNumberOfInformationObjects() > 0 ? vtkDataSet::GetData(inputVector[0], 0) : nullptr;
+  if (this->GenerateSamplingGrid || !input)
+  {
+    // Without input 0 and without the grid RequestData reports the error; an image is a
+    // harmless placeholder until then.
+    if (!output || !output->IsA("vtkImageData"))
+    {
+      vtkNew<vtkImageData> image;
+      outInfo->Set(vtkDataObject::DATA_OBJECT(), image);
+    }
+    return 1;
+  }
+  if (!output || !output->IsA(input->GetClassName()))
+  {
+    vtkDataObject* copy = input->NewInstance();
+    outInfo->Set(vtkDataObject::DATA_OBJECT(), copy);
+    copy->Delete();
+  }
+  return 1;
+}
+
+int vtkPointSetSurfaceFieldSampler::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->GenerateSamplingGrid)
+  {
+    return 1; // the executive has copied input 0's information
+  }
+  if (!this->CheckSampleDimensions())
+  {
+    return 0;
+  }
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int* d = this->SampleDimensions;
+  int whole[6] = { 0, d[0] - 1, 0, d[1] - 1, 0, d[2] - 1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole, 6);
+  outInfo->Set(CAN_PRODUCE_SUB_EXTENT(), 1);
+
+  // The origin and spacing depend on the cloud and on h: announce them when the cloud is already
+  // there; RequestData sets the definitive ones from the cloud it samples.
+  double origin[3] = { 0.0, 0.0, 0.0 };
+  double spacing[3] = { 1.0, 1.0, 1.0 };
+  vtkPointSet* cloud = vtkPointSet::GetData(inputVector[1], 0);
+  if (cloud && cloud->GetNumberOfPoints() > 0 && this->Surface && this->Surface->Prepare(cloud))
+  {
+    double o[3], s[3];
+    if (this->ComputeGridGeometry(cloud, o, s, true))
+    {
+      std::copy(o, o + 3, origin);
+      std::copy(s, s + 3, spacing);
+    }
+  }
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  return 1;
+}
+
+int vtkPointSetSurfaceFieldSampler::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  // The whole cloud, always: every sample may depend on any cloud point.
+  if (vtkInformation* sourceInfo = inputVector[1]->GetInformationObject(0))
+  {
+    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    if (sourceInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+        sourceInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+    }
+  }
+  // With the generated grid, input 0 (if connected) is ignored: ask for as little as possible
+  // in a form any producer accepts, i.e. its first piece, not our image extent.
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  if (this->GenerateSamplingGrid && inInfo)
+  {
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
+        inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+    }
+  }
+  return 1;
+}
+
+int vtkPointSetSurfaceFieldSampler::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* input =
+    inputVector[0]->GetNumberOfInformationObjects() > 0 ? vtkDataSet::GetData(inputVector[0], 0) : nullptr;
+  vtkPointSet* cloud = vtkPointSet::GetData(inputVector[1], 0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkDataSet* output = vtkDataSet::GetData(outInfo);
+  if (!output)
+  {
+    vtkErrorMacro(<< "no output data object");
+    return 0;
+  }
+  if (!this->Surface)
+  {
+    vtkErrorMacro(<< "no vtkPointSetSurface is set");
+    return 0;
+  }
+  if (!this->GenerateSamplingGrid && !input)
+  {
+    vtkErrorMacro(<< "no dataset to sample: connect input 0 or turn GenerateSamplingGrid on");
+    return 0;
+  }
+  if (!this->Surface->Prepare(cloud))
+  {
+    vtkErrorMacro(<< "cannot define the surface from the source: " << this->Surface->GetLastError());
+    return 0;
+  }
+  pss_vtk::WarnAboutSkippedPoints(this, this->Surface);
+
+  const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
+  pss::Orientation orientation;
+  std::string error;
+  const int rule = this->OrientationMode == PROPAGATE ? pss_vtk::ORIENT_AWAY_FROM_CENTROID : this->OrientationMode;
+  if (!pss_vtk::MakeOrientation(
+        rule, this->ReferencePoint, this->ReferenceDirection, *this->Surface->GetIndex(), orientation, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+
+  if (this->GenerateSamplingGrid)
+  {
+    vtkImageData* image = vtkImageData::SafeDownCast(output);
+    double origin[3], spacing[3];
+    if (!image || !this->CheckSampleDimensions() || !this->ComputeGridGeometry(cloud, origin, spacing, false))
+    {
+      if (!image)
+      {
+        vtkErrorMacro(<< "the output is not a vtkImageData");
+      }
+      return 0;
+    }
+    const int* d = this->SampleDimensions;
+    int extent[6] = { 0, d[0] - 1, 0, d[1] - 1, 0, d[2] - 1 };
+    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+    {
+      int requested[6];
+      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), requested);
+      for (int a = 0; a < 3; ++a)
+      {
+        extent[2 * a] = std::max(extent[2 * a], requested[2 * a]);
+        extent[2 * a + 1] = std::min(extent[2 * a + 1], requested[2 * a + 1]);
+      }
+    }
+    image->Initialize();
+    image->SetExtent(extent);
+    image->SetOrigin(origin);
+    image->SetSpacing(spacing);
+    // Correct the announcement too if RequestInformation saw an older cloud (or none yet).
+    outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+    outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  }
+  else
+  {
+    output->ShallowCopy(input);
+  }
+
+  // The output arrays are filled in place by the threads (each writes its own tuples): no
+  // per-sample buffer beyond them, so the 4 GiB check above is the memory used.
+  const vtkIdType n = output->GetNumberOfPoints();
+  auto normal = pss_vtk::NewArray<vtkDoubleArray>("Normal", n, 3);
+  auto energy = pss_vtk::NewArray<vtkDoubleArray>("Energy", n, 1);
+  auto delta = pss_vtk::NewArray<vtkDoubleArray>("Delta", n, 1);
+  auto g = pss_vtk::NewArray<vtkDoubleArray>("ImplicitG", n, 1);
+  auto stability = pss_vtk::NewArray<vtkDoubleArray>("Stability", n, 1);
+  auto extremum = pss_vtk::NewArray<vtkIntArray>("ExtremumType", n, 1);
+  auto valid = pss_vtk::NewArray<vtkUnsignedCharArray>("Valid", n, 1);
+  vtkSmartPointer<vtkIntArray> label;
+  if (this->ComputeDomainLabels)
+  {
+    label = pss_vtk::NewArray<vtkIntArray>("DomainLabel", n, 1);
+  }
+  double* normalOut = normal->GetPointer(0);
+  double* energyOut = energy->GetPointer(0);
+  double* deltaOut = delta->GetPointer(0);
+  double* gOut = g->GetPointer(0);
+  double* stabilityOut = stability->GetPointer(0);
+  int* extremumOut = extremum->GetPointer(0);
+  unsigned char* validOut = valid->GetPointer(0);
+  int* labelOut = label ? label->GetPointer(0) : nullptr;
+
+  pss::ProjectionOptions projection;
+  projection.maxIterations = this->MaxIterations;
+  projection.tolerance = this->Tolerance;
+  pss::DomainThresholds thresholds;
+  thresholds.maxDistance = this->DomainMaxDistance;
+  thresholds.maxNormalAngle = this->DomainMaxNormalAngle;
+
+  if (n > 0)
+  {
+    double first[3];
+    output->GetPoint(0, first); // vtkDataSet::GetPoint(id, x) is thread-safe once called serially
+  }
+  bool completed = true;
+  try
+  {
+    if (labelOut)
+    {
+      projection.validate();
+      thresholds.validate();
+    }
+    const pss_vtk::FieldEvaluator evaluator(surface, orientation);
+    completed = ParallelForGuarded(
+      this, n,
+      [&](vtkIdType i) {
+        double x[3];
+        output->GetPoint(i, x);
+        const pss_vtk::FieldValues v = evaluator.Evaluate(x);
+        std::copy(v.normal.data(), v.normal.data() + 3, normalOut + 3 * i);
+        energyOut[i] = v.energy;
+        deltaOut[i] = v.delta;
+        gOut[i] = v.g;
+        stabilityOut[i] = v.stability;
+        extremumOut[i] = v.extremumType;
+        validOut[i] = v.valid ? 1 : 0;
+        if (labelOut)
+        {
+          const pss::DomainEvidence ev =
+            pss::classifyStart(surface, pss::Vec3(x[0], x[1], x[2]), projection, thresholds);
+          labelOut[i] = static_cast<int>(ev.label);
+        }
+      },
+      0.0, this->OrientationMode == PROPAGATE ? 0.95 : 1.0);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "field sampling failed: " << e.what());
+    output->Initialize();
+    return 0;
+  }
+  if (!completed)
+  {
+    output->Initialize(); // aborted: leave the output empty
+    return 1;
+  }
+  if (this->OrientationMode == PROPAGATE)
+  {
+    pss_vtk::PropagateOrientation(output, normalOut, gOut, stabilityOut);
+    this->UpdateProgress(1.0);
+  }
+
+  const vtkIdType invalid = n - std::count(validOut, validOut + n, static_cast<unsigned char>(1));
+  if (invalid > 0)
+  {
+    vtkWarningMacro(<< invalid << " sample point(s) have NaN or infinite coordinates (or values): Valid = 0, "
+                    << "every other array 0 there");
+  }
+  vtkPointData* outPD = output->GetPointData();
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(normal), static_cast<vtkDataArray*>(energy),
+         static_cast<vtkDataArray*>(delta), static_cast<vtkDataArray*>(g),
+         static_cast<vtkDataArray*>(stability), static_cast<vtkDataArray*>(extremum),
+         static_cast<vtkDataArray*>(valid) })
+  {
+    outPD->AddArray(a);
+  }
+  if (label)
+  {
+    outPD->AddArray(label);
+  }
+  outPD->SetVectors(normal);
+  outPD->SetScalars(g);
+  return 1;
+}
+
+void vtkPointSetSurfaceFieldSampler::PrintSelf(ostream& os, vtkIndent indent)
+{
+  static const char* const modes[] = { "AwayFromCentroid", "AwayFromPoint", "AlongDirection", "Propagate" };
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "OrientationMode: " << modes[this->OrientationMode] << "\n";
+  os << indent << "ReferencePoint: (" << this->ReferencePoint[0] << ", " << this->ReferencePoint[1] << ", "
+     << this->ReferencePoint[2] << ")\n";
+  os << indent << "ReferenceDirection: (" << this->ReferenceDirection[0] << ", " << this->ReferenceDirection[1]
+     << ", " << this->ReferenceDirection[2] << ")\n";
+  os << indent << "GenerateSamplingGrid: " << (this->GenerateSamplingGrid ? "On" : "Off") << "\n";
+  os << indent << "SampleDimensions: (" << this->SampleDimensions[0] << ", " << this->SampleDimensions[1] << ", "
+     << this->SampleDimensions[2] << ")\n";
+  os << indent << "SamplingMargin: " << this->SamplingMargin << "\n";
+  os << indent << "ComputeDomainLabels: " << (this->ComputeDomainLabels ? "On" : "Off") << "\n";
+  os << indent << "DomainMaxDistance: " << this->DomainMaxDistance << "\n";
+  os << indent << "DomainMaxNormalAngle: " << this->DomainMaxNormalAngle << "\n";
+  os << indent << "MaxIterations: " << this->MaxIterations << "\n";
+  os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "Surface: ";
+  if (this->Surface)
+  {
+    os << "\n";
+    this->Surface->PrintSelf(os, indent.GetNextIndent());
+  }
+  else
+  {
+    os << "(none)\n";
+  }
+}
