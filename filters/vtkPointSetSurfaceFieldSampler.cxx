@@ -27,7 +27,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -43,20 +42,6 @@ constexpr std::uint64_t kMaxOutputBytes = std::uint64_t(4) << 30;
 // Normal (3 doubles), Energy, Delta, ImplicitG, Stability (doubles), ExtremumType (int), Valid
 // (byte), DomainLabel (int).
 constexpr std::uint64_t kBytesPerSample = 3 * 8 + 4 * 8 + 4 + 1 + 4;
-
-// pss_vtk::ParallelFor crashes with VTK 9.2's STDThread backend when vtkSMPTools::For runs its
-// only chunk inline (n == 1): vtkSMPTools::GetSingleThread() is then called outside the thread
-// pool. A single sample is computed directly until the helper handles that case.
-bool ParallelForGuarded(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType)>& body,
-  double progressBegin, double progressEnd)
-{
-  if (n == 1)
-  {
-    body(0);
-    return true;
-  }
-  return pss_vtk::ParallelFor(algorithm, n, body, progressBegin, progressEnd);
-}
 }
 
 vtkPointSetSurfaceFieldSampler::vtkPointSetSurfaceFieldSampler()
@@ -421,7 +406,7 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
       thresholds.validate();
     }
     const pss_vtk::FieldEvaluator evaluator(surface, orientation);
-    completed = ParallelForGuarded(
+    completed = pss_vtk::ParallelFor(
       this, n,
       [&](vtkIdType i) {
         double x[3];
