@@ -1,11 +1,12 @@
 # Builds an AddressSanitizer + UndefinedBehaviorSanitizer copy of the project and runs the given
 # test executables in it with a gtest filter (the bad-input tests). Invoked by ctest:
-#   cmake -DSOURCE_DIR=... -DBINARY_DIR=... -DTARGETS="a;b" -DFILTER=... -P RunSanitized.cmake
+#   cmake -DSOURCE_DIR=... -DBINARY_DIR=... -DTARGETS=a,b -DFILTER=... -P RunSanitized.cmake
 foreach(var SOURCE_DIR BINARY_DIR TARGETS FILTER)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "RunSanitized.cmake needs -D${var}=...")
   endif()
 endforeach()
+string(REPLACE "," ";" TARGETS "${TARGETS}")
 
 execute_process(
   COMMAND "${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${BINARY_DIR}" -DCMAKE_BUILD_TYPE=RelWithDebInfo
