@@ -1,96 +1,381 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * pss-bench-core: projection throughput of the core, per surface definition, printed as a table.
+ * pss-bench: projection and field-sampling throughput, printed as a table.
  *
- *   pss-bench-core [--points 20000] [--queries 2000] [--threads 0]
+ *   pss-bench [--quick] [--data DIR] [--rows PATTERN]
  *
- * Cloud: a noisy sphere (3D) and a noisy circle (2D) of --points points; h = 2.5 mean spacings.
- * The Integral and Delta definitions (e_I needs a Gauss-Hermite plane quadrature per direction
- * trial) get a tenth of the queries in 3D. Numbers are wall-clock; quote medians of several runs.
+ * Rows (each run in a child process, so its peak resident memory is its own):
+ * - bunny: the 362,272 merged Stanford bunny scans (DIR/stanford-bunny/bunny_scans_merged.ply,
+ *   skipped when absent), h = 1 mm, Gaussian cut at 3h, iterated to a step below 1e-6 h, at most
+ *   10 iterations; every definition x procedure x 1 and 2 threads. The Integral and Delta
+ *   definitions, far slower, project an evenly spread subset (the points/s are per point).
+ *   The median distance of the projected points to bun_zipper.ply is printed where VTK is built.
+ * - sphere-N: noisy spheres of 10k, 100k and 1M points (CenterOfMass, plane procedure), to show
+ *   how the cost grows with N.
+ * - field-1024: field sampling of a 1024 x 1024 grid around a 5,000-point noisy curve
+ *   (CenterOfMass, every array), through vtkPointSetSurfaceFieldSampler (when VTK is built).
+ *
+ * Columns: points (or samples) per second, mean iterations, mean neighbours (points with a
+ * weight above exp(-9) of the nearest one at the final point), peak RSS of the row's process and
+ * the RSS beyond the input cloud per input point. --quick runs a reduced set for smoke testing.
  */
 #include "pss/Core.h"
 
+#ifdef PSS_BENCH_WITH_VTK
+#include "vtkCellLocator.h"
+#include "vtkNew.h"
+#include "vtkPLYReader.h"
+#include "vtkPointData.h"
+#include "vtkPointSetSurface.h"
+#include "vtkPointSetSurfaceFieldSampler.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkStaticCellLocator.h"
+#endif
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <functional>
 #include <string>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
 
 namespace
 {
 
-struct Options
+struct RowResult
 {
-  std::size_t points = 20000;
-  std::size_t queries = 2000;
-  int threads = 0;
+  double itemsPerSecond = 0.0;
+  double meanIterations = 0.0;
+  double meanNeighbours = 0.0;
+  double medianDistance = -1.0; // to the reference surface, when measured
+  std::size_t cloudPoints = 0;  // size of the input cloud
+  double startKiB = 0.0;        // resident memory of the row's process when it started
+  std::size_t items = 0;
 };
 
-Options parse(int argc, char** argv)
+double Seconds(std::chrono::steady_clock::time_point t0)
 {
-  Options o;
-  for (int i = 1; i + 1 < argc; i += 2)
-  {
-    const std::string flag = argv[i];
-    const long value = std::strtol(argv[i + 1], nullptr, 10);
-    if (flag == "--points")
-      o.points = static_cast<std::size_t>(std::max(100L, value));
-    else if (flag == "--queries")
-      o.queries = static_cast<std::size_t>(std::max(10L, value));
-    else if (flag == "--threads")
-      o.threads = static_cast<int>(value);
-  }
-  return o;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void run(const Options& opt, int dimension)
+std::vector<pss::Vec3> ReadBunny(const std::string& path)
+{
+  // Binary little-endian PLY with float x y z and uchar scan (see the data README).
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::size_t n = 0;
+  while (std::getline(in, line) && line != "end_header")
+  {
+    if (line.rfind("element vertex ", 0) == 0)
+    {
+      n = std::stoul(line.substr(15));
+    }
+  }
+  std::vector<pss::Vec3> points(n);
+  for (pss::Vec3& p : points)
+  {
+    float xyz[3];
+    unsigned char scan = 0;
+    in.read(reinterpret_cast<char*>(xyz), sizeof(xyz));
+    in.read(reinterpret_cast<char*>(&scan), 1);
+    p = pss::Vec3(xyz[0], xyz[1], xyz[2]);
+  }
+  if (!in)
+  {
+    points.clear();
+  }
+  return points;
+}
+
+// Neighbours that carry weight at a point: those within the truncation band of the nearest.
+double NeighbourCount(const pss::PointIndex& index, const pss::SurfaceParameters& params, const pss::Vec3& x)
+{
+  thread_local pss::Neighbourhood nb;
+  pss::gatherNeighbourhood(index, params, x, nb);
+  return static_cast<double>(nb.size());
+}
+
+RowResult ProjectRow(const std::vector<pss::Vec3>& cloud, int dimension, double h, pss::Variant variant,
+  pss::Procedure procedure, int threads, std::size_t maxStarts, const std::function<double(const std::vector<pss::Vec3>&)>& accuracy)
+{
+  const pss::PointIndex index(cloud, dimension);
+  pss::SurfaceParameters params;
+  params.h = h;
+  const auto surface = pss::makeSurface(variant, index, params);
+  pss::ProjectionOptions options;
+  options.procedure = procedure;
+  options.maxIterations = 10;
+  options.tolerance = 1e-6;
+  std::vector<pss::Vec3> starts;
+  const std::size_t n = std::min(maxStarts, cloud.size());
+  starts.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    starts.push_back(cloud[i * cloud.size() / n]);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto results = pss::projectAll(*surface, starts, options, threads);
+  const double seconds = Seconds(t0);
+
+  RowResult row;
+  row.items = n;
+  row.itemsPerSecond = n / seconds;
+  row.cloudPoints = cloud.size();
+  double iterations = 0.0;
+  double neighbours = 0.0;
+  std::vector<pss::Vec3> ends;
+  ends.reserve(n);
+  for (const auto& r : results)
+  {
+    iterations += r.iterations;
+    ends.push_back(r.point);
+  }
+  const std::size_t probe = std::min<std::size_t>(n, 2000);
+  for (std::size_t i = 0; i < probe; ++i)
+  {
+    neighbours += NeighbourCount(index, params, ends[i * n / probe]);
+  }
+  row.meanIterations = iterations / n;
+  row.meanNeighbours = neighbours / probe;
+  if (accuracy)
+  {
+    row.medianDistance = accuracy(ends);
+  }
+  return row;
+}
+
+#ifdef PSS_BENCH_WITH_VTK
+// Median distance from points to the reference triangle mesh.
+std::function<double(const std::vector<pss::Vec3>&)> DistanceToMesh(const std::string& meshPath)
+{
+  return [meshPath](const std::vector<pss::Vec3>& points) {
+    vtkNew<vtkPLYReader> reader;
+    reader->SetFileName(meshPath.c_str());
+    reader->Update();
+    vtkNew<vtkStaticCellLocator> locator;
+    locator->SetDataSet(reader->GetOutput());
+    locator->BuildLocator();
+    std::vector<double> d;
+    d.reserve(points.size());
+    for (const pss::Vec3& p : points)
+    {
+      double closest[3], d2 = 0.0;
+      vtkIdType cell = 0;
+      int sub = 0;
+      locator->FindClosestPoint(p.data(), closest, cell, sub, d2);
+      d.push_back(std::sqrt(d2));
+    }
+    std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+    return d[d.size() / 2];
+  };
+}
+
+RowResult FieldRow(int threads)
 {
   pss::CloudSpec spec;
-  spec.scene = dimension == 3 ? pss::Scene::Sphere : pss::Scene::Circle;
-  spec.dimension = dimension;
-  spec.count = opt.points;
-  spec.size = 100.0;
-  // Mean spacing: sphere area / N (3D) or circumference / N (2D).
-  const double spacing = dimension == 3 ? std::sqrt(M_PI * spec.size * spec.size / opt.points)
-                                        : M_PI * spec.size / opt.points;
-  spec.noise = 0.5 * spacing;
-  const auto cloud = pss::generateCloud(spec);
-
-  const auto t0 = std::chrono::steady_clock::now();
-  const pss::PointIndex index(cloud, dimension);
-  const double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-  pss::SurfaceParameters params;
-  params.h = 2.5 * spacing;
-  pss::ProjectionOptions projection;
-  std::printf("%dD: %zu points, h = %.4f, index built in %.4f s, threads %d\n", dimension, cloud.size(), params.h,
-    buildSeconds, pss::resolveThreadCount(opt.threads));
-  std::printf("  %-11s %8s %12s %14s %10s\n", "variant", "queries", "seconds", "points/second", "converged");
-  for (int v = 0; v < pss::VariantCount; ++v)
+  spec.scene = pss::Scene::NoisyCurve;
+  spec.count = 5000;
+  spec.noise = 2.0;
+  const std::vector<pss::Vec3> cloud = pss::generateCloud(spec);
+  vtkNew<vtkPoints> points;
+  for (const pss::Vec3& p : cloud)
   {
-    const auto variant = static_cast<pss::Variant>(v);
-    const bool expensive = dimension == 3 && (variant == pss::Variant::Integral || variant == pss::Variant::Delta);
-    const std::size_t n = std::min(cloud.size(), expensive ? std::max<std::size_t>(10, opt.queries / 10) : opt.queries);
-    const std::vector<pss::Vec3> starts(cloud.begin(), cloud.begin() + static_cast<std::ptrdiff_t>(n));
-    const auto surface = pss::makeSurface(variant, index, params);
-    const auto t1 = std::chrono::steady_clock::now();
-    const auto results = pss::projectAll(*surface, starts, projection, opt.threads);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-    std::size_t converged = 0;
-    for (const auto& r : results)
-    {
-      converged += r.converged ? 1 : 0;
-    }
-    std::printf("  %-11s %8zu %12.4f %14.1f %10zu\n", pss::variantName(variant), n, seconds, n / seconds, converged);
+    points->InsertNextPoint(p.data());
   }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  vtkSMPTools::SetBackend("STDThread");
+  vtkSMPTools::Initialize(threads);
+  vtkNew<vtkPointSetSurfaceFieldSampler> sampler;
+  sampler->SetSourceData(poly);
+  sampler->GenerateSamplingGridOn();
+  sampler->SetSampleDimensions(1024, 1024, 1);
+  sampler->GetSurface()->SetVariantToCenterOfMass();
+  const auto t0 = std::chrono::steady_clock::now();
+  sampler->Update();
+  const double seconds = Seconds(t0);
+  RowResult row;
+  row.items = 1024 * 1024;
+  row.itemsPerSecond = row.items / seconds;
+  row.cloudPoints = row.items; // per sample, for this row
+  return row;
+}
+#endif
+
+double ResidentKiB()
+{
+  long pages = 0;
+  long resident = 0;
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (f)
+  {
+    if (std::fscanf(f, "%ld %ld", &pages, &resident) != 2)
+    {
+      resident = 0;
+    }
+    std::fclose(f);
+  }
+  return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / 1024.0;
+}
+
+// Runs @p body in a child process; returns false when the child failed.
+bool RunRow(const char* name, const std::function<RowResult()>& body)
+{
+  int pipefd[2];
+  if (pipe(pipefd) != 0)
+  {
+    return false;
+  }
+  const pid_t pid = fork();
+  if (pid == 0)
+  {
+    close(pipefd[0]);
+    const double startKiB = ResidentKiB();
+    RowResult r = body();
+    r.startKiB = startKiB;
+    const ssize_t written = write(pipefd[1], &r, sizeof(r));
+    _exit(written == static_cast<ssize_t>(sizeof(r)) ? 0 : 1);
+  }
+  close(pipefd[1]);
+  RowResult r;
+  const ssize_t got = read(pipefd[0], &r, sizeof(r));
+  close(pipefd[0]);
+  int status = 0;
+  struct rusage usage
+  {
+  };
+  wait4(pid, &status, 0, &usage);
+  if (got != static_cast<ssize_t>(sizeof(r)) || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  {
+    std::printf("%-34s failed\n", name);
+    return false;
+  }
+  const double peakMiB = usage.ru_maxrss / 1024.0;
+  // Memory the row added to what its process held when it started, per input point.
+  const double bytesPerPoint = r.cloudPoints ? (usage.ru_maxrss - r.startKiB) * 1024.0 / r.cloudPoints : 0.0;
+  char distance[32] = "";
+  if (r.medianDistance >= 0.0)
+  {
+    std::snprintf(distance, sizeof(distance), "%.1f", r.medianDistance * 1e6);
+  }
+  std::printf("%-34s %9zu %11.0f %6.2f %7.1f %9.1f %7.0f %9s\n", name, r.items, r.itemsPerSecond, r.meanIterations,
+    r.meanNeighbours, peakMiB, bytesPerPoint, distance);
+  std::fflush(stdout);
+  return true;
 }
 
 } // namespace
 
 int main(int argc, char** argv)
 {
-  const Options opt = parse(argc, argv);
-  run(opt, 2);
-  run(opt, 3);
+  bool quick = false;
+  std::string data = PSS_BENCH_DEFAULT_DATA;
+  std::string only;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (a == "--quick")
+      quick = true;
+    else if (a == "--data" && i + 1 < argc)
+      data = argv[++i];
+    else if (a == "--rows" && i + 1 < argc)
+      only = argv[++i];
+    else
+    {
+      std::printf("usage: pss-bench [--quick] [--data DIR] [--rows SUBSTRING]\n");
+      return a == "--help" ? 0 : 2;
+    }
+  }
+  auto wanted = [&](const std::string& name) { return only.empty() || name.find(only) != std::string::npos; };
+  std::printf("%-34s %9s %11s %6s %7s %9s %7s %9s\n", "row", "items", "items/s", "iters", "neighb", "peak MiB",
+    "B/point", "median um");
+
+  const std::string bunnyPath = data + "/stanford-bunny/bunny_scans_merged.ply";
+  const std::vector<pss::Vec3> bunny = ReadBunny(bunnyPath);
+  if (bunny.empty())
+  {
+    std::printf("(bunny rows skipped: %s not readable)\n", bunnyPath.c_str());
+  }
+  std::function<double(const std::vector<pss::Vec3>&)> accuracy;
+#ifdef PSS_BENCH_WITH_VTK
+  accuracy = DistanceToMesh(data + "/stanford-bunny/bun_zipper.ply");
+#endif
+  const pss::Procedure procedures[] = { pss::Procedure::Plane, pss::Procedure::Extremal };
+  for (int v = 0; v < pss::VariantCount && !bunny.empty(); ++v)
+  {
+    const auto variant = static_cast<pss::Variant>(v);
+    const bool slow = variant == pss::Variant::Integral || variant == pss::Variant::Delta;
+    for (pss::Procedure procedure : procedures)
+    {
+      for (int threads : { 1, 2 })
+      {
+        if (quick && (threads == 1 || slow || procedure == pss::Procedure::Extremal) && variant != pss::Variant::CenterOfMass)
+        {
+          continue;
+        }
+        const std::string name = std::string("bunny ") + pss::variantName(variant) +
+          (procedure == pss::Procedure::Plane ? " plane" : " extremal") + " t" + std::to_string(threads);
+        if (!wanted(name))
+        {
+          continue;
+        }
+        const std::size_t starts = slow ? (quick ? 20 : 200) : (quick ? 20000 : bunny.size());
+        RunRow(name.c_str(), [&]() {
+          return ProjectRow(bunny, 3, 0.001, variant, procedure, threads, starts, slow || quick ? nullptr : accuracy);
+        });
+      }
+    }
+  }
+
+  for (std::size_t n : { std::size_t(10000), std::size_t(100000), std::size_t(1000000) })
+  {
+    if (quick && n > 100000)
+    {
+      continue;
+    }
+    for (int threads : { 1, 2 })
+    {
+      const std::string name = "sphere-" + std::to_string(n / 1000) + "k com plane t" + std::to_string(threads);
+      if (!wanted(name))
+      {
+        continue;
+      }
+      RunRow(name.c_str(), [&]() {
+        pss::CloudSpec spec;
+        spec.scene = pss::Scene::Sphere;
+        spec.dimension = 3;
+        spec.count = n;
+        spec.size = 100.0;
+        const double spacing = std::sqrt(M_PI * spec.size * spec.size / static_cast<double>(n));
+        spec.noise = 0.3 * spacing;
+        const auto cloud = pss::generateCloud(spec);
+        return ProjectRow(cloud, 3, 2.0 * spacing, pss::Variant::CenterOfMass, pss::Procedure::Plane, threads, n, nullptr);
+      });
+    }
+  }
+
+#ifdef PSS_BENCH_WITH_VTK
+  for (int threads : { 1, 2 })
+  {
+    const std::string name = "field-1024x1024 com t" + std::to_string(threads);
+    if (wanted(name))
+    {
+      RunRow(name.c_str(), [&]() { return FieldRow(threads); });
+    }
+  }
+#endif
+  std::printf("\nitems/s: projected points (or grid samples) per second of wall time; iters: mean iterations;\n"
+              "neighb: mean neighbours with weight > exp(-9) of the nearest; peak MiB: the row process's\n"
+              "peak resident memory; B/point: peak memory the row added to what its process held at its\n"
+              "start, per input point (per sample for the field rows), including its own copy of the input;\n"
+              "median um: median distance to bun_zipper.ply in micrometres.\n");
   return 0;
 }

@@ -46,10 +46,15 @@ void commonScale(const ScaledSlope& a, const ScaledSlope& b, double& fa, double&
   fb = b.mantissa * std::exp(b.logScale - l);
 }
 
-// Second derivative of t -> e(x + t n, n) at 0 by a central difference of the analytic slope,
-// expressed at the scale of @p at (multiply by exp(at.logScale) for the true value).
+// Second derivative of t -> e(x + t n, n) at 0, expressed at the scale of @p at (multiply by
+// exp(at.logScale) for the true value): the definition's own when it has one, else a central
+// difference of the analytic slope.
 double scaledCurvature(const SurfaceDefinition& s, const Vec3& x, const Vec3& n, const LineSample& at)
 {
+  if (!std::isnan(at.curvature))
+  {
+    return at.curvature;
+  }
   const double eps = 1e-4 * s.h();
   const LineSample plus = s.lineSample(x + eps * n, n);
   const LineSample minus = s.lineSample(x - eps * n, n);
@@ -257,7 +262,12 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
     res.path.push_back(x);
   }
   const double h = s.h();
-  Direction dir = s.direction(x);
+  const bool plane = opt.procedure == Procedure::Plane;
+  // The plane procedure needs n(x) and c(x) - x at every iterate; planeFit gets both from one
+  // neighbourhood.
+  Vec3 centroid = Vec3::Zero();
+  auto fitAt = [&](const Vec3& p) { return plane ? s.planeFit(p, centroid) : s.direction(p); };
+  Direction dir = fitAt(x);
   res.startDirection = dir;
   res.reason = StopReason::MaxIterations;
   ExtremumType lastType = ExtremumType::None;
@@ -273,12 +283,10 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
       break;
     }
     double t = 0.0;
-    if (opt.procedure == Procedure::Plane)
+    if (plane)
     {
       // Move x onto the plane through c(x) with normal n(x): the zero set of <n, x - c>.
-      thread_local Neighbourhood nb;
-      gatherNeighbourhood(index, s.parameters(), x, nb);
-      t = dir.n.dot(centroidOffset(nb));
+      t = dir.n.dot(centroid);
     }
     else
     {
@@ -298,7 +306,7 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
     {
       res.path.push_back(x);
     }
-    dir = s.direction(x);
+    dir = fitAt(x);
     if (std::abs(t) < opt.tolerance * h)
     {
       res.reason = dir.defined ? StopReason::Converged : StopReason::UndefinedDirection;

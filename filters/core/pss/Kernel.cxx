@@ -3,6 +3,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -36,75 +37,162 @@ void SurfaceParameters::validate() const
   }
 }
 
+void Neighbourhood::resize(Eigen::Index n)
+{
+  if (dx.size() < n)
+  {
+    const Eigen::Index capacity = std::max<Eigen::Index>(n, 2 * dx.size());
+    for (Eigen::ArrayXd* a : { &dx, &dy, &dz, &sqDist, &weight })
+    {
+      a->resize(capacity);
+    }
+  }
+  count = n;
+}
+
+namespace
+{
+
+// The candidates of a thread's last k-d tree query: absolute coordinates, ordered by index.
+struct CandidateCache
+{
+  std::uint64_t indexSerial = 0; // 0: empty
+  double h = 0.0;
+  double band = 0.0;
+  Vec3 center = Vec3::Zero();
+  double centerMinDist = 0.0;
+  double radius = 0.0;
+  std::vector<std::pair<std::uint32_t, double>> found;
+  Eigen::ArrayXd px, py, pz;
+  Eigen::Index count = 0;
+
+  // True when every point within sqrt(dmin(y)^2 + band) of y is among the candidates:
+  // dmin(y) <= centerMinDist + |y - center|, and that ball around y lies in the fetched one.
+  bool covers(const PointIndex& index, const SurfaceParameters& params, const Vec3& y) const
+  {
+    if (indexSerial != index.serial() || h != params.h || band != params.cutoff * params.cutoff * h * h)
+    {
+      return false;
+    }
+    const double shift = (y - center).norm();
+    const double reach = centerMinDist + shift;
+    return std::sqrt(reach * reach + band) + shift <= radius;
+  }
+
+  void fetch(const PointIndex& index, const SurfaceParameters& params, const Vec3& y)
+  {
+    indexSerial = index.serial();
+    h = params.h;
+    band = params.cutoff * params.cutoff * h * h;
+    center = y;
+    centerMinDist = std::sqrt(index.nearest(y).second);
+    const double margin = std::max(0.25 * h, 0.05 * centerMinDist);
+    const double reach = centerMinDist + margin;
+    radius = std::sqrt(reach * reach + band) + margin;
+    index.withinSqRadius(y, radius * radius, found);
+    if (found.empty())
+    {
+      // Only when the radius rounds below the nearest distance (absurd scale ratios).
+      found.emplace_back(static_cast<std::uint32_t>(index.nearest(y).first), 0.0);
+    }
+    // Index order makes every later neighbourhood independent of where this fetch was made.
+    std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    count = static_cast<Eigen::Index>(found.size());
+    if (px.size() < count)
+    {
+      px.resize(count);
+      py.resize(count);
+      pz.resize(count);
+    }
+    for (Eigen::Index i = 0; i < count; ++i)
+    {
+      const Vec3& p = index.point(found[static_cast<std::size_t>(i)].first);
+      px[i] = p.x();
+      py[i] = p.y();
+      pz[i] = p.z();
+    }
+  }
+};
+
+} // namespace
+
 void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, Neighbourhood& nb)
 {
-  // Reused across calls on the same thread: the search buffer is the only allocation per query.
-  thread_local std::vector<std::pair<std::uint32_t, double>> found;
+  thread_local CandidateCache cache;
+  thread_local Eigen::ArrayXd candidateSq;
 
   nb.origin = index.restrict(y);
   nb.invH2 = 1.0 / (params.h * params.h);
-  const auto nearest = index.nearest(nb.origin);
-  const double band = params.cutoff * params.cutoff * params.h * params.h;
-  index.withinSqRadius(nb.origin, nearest.second + band, found);
-  if (found.empty())
+  if (!cache.covers(index, params, nb.origin))
   {
-    // Only when dmin^2 + band rounds to dmin^2 (absurd scale ratios): keep the nearest point.
-    found.emplace_back(static_cast<std::uint32_t>(nearest.first), nearest.second);
+    cache.fetch(index, params, nb.origin);
   }
+  const Eigen::Index m = cache.count;
+  if (candidateSq.size() < m)
+  {
+    candidateSq.resize(m);
+  }
+  // Offsets are p - y from absolute coordinates: for large coordinates this subtraction is the
+  // only place digits can go, and it is exact to one rounding whatever the cache centre was.
+  auto sq = candidateSq.head(m);
+  sq = (cache.px.head(m) - nb.origin.x()).square() + (cache.py.head(m) - nb.origin.y()).square() +
+    (cache.pz.head(m) - nb.origin.z()).square();
+  const double minSq = sq.minCoeff();
+  const double limit = minSq + cache.band;
 
-  const std::size_t n = found.size();
-  nb.offsets.resize(n);
-  nb.sqDist.resize(n);
-  nb.weight.resize(n);
-  double minSq = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < n; ++i)
+  nb.resize(m);
+  Eigen::Index n = 0;
+  for (Eigen::Index i = 0; i < m; ++i)
   {
-    // Offsets relative to the query keep covariances exact for large coordinates.
-    nb.offsets[i] = index.point(found[i].first) - nb.origin;
-    nb.sqDist[i] = nb.offsets[i].squaredNorm();
-    minSq = std::min(minSq, nb.sqDist[i]);
+    if (sq[i] < limit || sq[i] == minSq)
+    {
+      nb.dx[n] = cache.px[i] - nb.origin.x();
+      nb.dy[n] = cache.py[i] - nb.origin.y();
+      nb.dz[n] = cache.pz[i] - nb.origin.z();
+      nb.sqDist[n] = sq[i];
+      ++n;
+    }
   }
+  nb.count = n;
   nb.minSqDist = minSq;
-  nb.weightSum = 0.0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    nb.weight[i] = std::exp(-(nb.sqDist[i] - minSq) * nb.invH2);
-    nb.weightSum += nb.weight[i];
-  }
+  nb.weight.head(n) = (-(nb.sqDist.head(n) - minSq) * nb.invH2).exp();
+  nb.weightSum = nb.w().sum();
 }
 
 Vec3 centroidOffset(const Neighbourhood& nb)
 {
-  Vec3 sum = Vec3::Zero();
-  for (std::size_t i = 0; i < nb.size(); ++i)
-  {
-    sum += nb.weight[i] * nb.offsets[i];
-  }
-  return sum / nb.weightSum;
+  const auto w = nb.w();
+  return Vec3((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum()) / nb.weightSum;
+}
+
+// sum_i w_i (p_i - y - m)(p_i - y - m)^T: the six distinct entries, as lazy array expressions
+// (no temporaries are allocated; each entry is one vectorized pass over the neighbours).
+Mat3 weightedScatter(const Neighbourhood& nb, const Vec3& m)
+{
+  const auto w = nb.w();
+  const auto cx = nb.x() - m.x();
+  const auto cy = nb.y() - m.y();
+  const auto cz = nb.z() - m.z();
+  Mat3 c;
+  c(0, 0) = (w * cx * cx).sum();
+  c(1, 1) = (w * cy * cy).sum();
+  c(2, 2) = (w * cz * cz).sum();
+  c(0, 1) = c(1, 0) = (w * cx * cy).sum();
+  c(0, 2) = c(2, 0) = (w * cx * cz).sum();
+  c(1, 2) = c(2, 1) = (w * cy * cz).sum();
+  return c;
 }
 
 Mat3 covarianceAboutQuery(const Neighbourhood& nb)
 {
-  Mat3 c = Mat3::Zero();
-  for (std::size_t i = 0; i < nb.size(); ++i)
-  {
-    c.noalias() += nb.weight[i] * nb.offsets[i] * nb.offsets[i].transpose();
-  }
-  return c;
+  return weightedScatter(nb, Vec3::Zero());
 }
 
 Mat3 covarianceAboutCentroid(const Neighbourhood& nb)
 {
   // Two passes: far from the cloud the offsets are large and nearly equal, and the one-pass
   // form E[r r^T] - m m^T would cancel away the digits that matter.
-  const Vec3 m = centroidOffset(nb);
-  Mat3 c = Mat3::Zero();
-  for (std::size_t i = 0; i < nb.size(); ++i)
-  {
-    const Vec3 d = nb.offsets[i] - m;
-    c.noalias() += nb.weight[i] * d * d.transpose();
-  }
-  return c / nb.weightSum;
+  return weightedScatter(nb, centroidOffset(nb)) / nb.weightSum;
 }
 
 Direction smallestEigenDirection(const Mat3& C, int dimension, double minStability)
@@ -147,24 +235,16 @@ Direction smallestEigenDirection(const Mat3& C, int dimension, double minStabili
 
 double approximateSqDistance(const Neighbourhood& nb)
 {
-  double sum = 0.0;
-  for (std::size_t i = 0; i < nb.size(); ++i)
-  {
-    sum += nb.weight[i] * nb.sqDist[i];
-  }
-  return sum / nb.weightSum;
+  return (nb.w() * nb.d2()).sum() / nb.weightSum;
 }
 
 Vec3 approximateSqDistanceGradient(const Neighbourhood& nb, double delta)
 {
-  Vec3 centroid = Vec3::Zero();
-  Vec3 spread = Vec3::Zero();
-  for (std::size_t i = 0; i < nb.size(); ++i)
-  {
-    centroid += nb.weight[i] * nb.offsets[i];
-    spread += nb.weight[i] * (nb.sqDist[i] - delta) * nb.offsets[i];
-  }
-  return (-2.0 * centroid + 2.0 * nb.invH2 * spread) / nb.weightSum;
+  const auto w = nb.w();
+  const auto spread = w * (nb.d2() - delta);
+  const Vec3 centroid((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum());
+  const Vec3 moment((spread * nb.x()).sum(), (spread * nb.y()).sum(), (spread * nb.z()).sum());
+  return (-2.0 * centroid + 2.0 * nb.invH2 * moment) / nb.weightSum;
 }
 
 DistanceField::DistanceField(const PointIndex& index, const SurfaceParameters& params)

@@ -24,6 +24,8 @@
 #include "pss/PointIndex.h"
 #include "pss/Types.h"
 
+#include <Eigen/Core>
+
 #include <vector>
 
 namespace pss
@@ -42,28 +44,59 @@ struct SurfaceParameters
   void validate() const;
 };
 
-/// The cloud points that influence a query point y, with their shifted Gaussian weights.
+/**
+ * The cloud points that influence a query point y, with their shifted Gaussian weights, stored as
+ * structure-of-arrays so the sums over neighbours vectorize. Only the first size() entries of each
+ * array are meaningful (the arrays keep their capacity between queries).
+ *
+ * Neighbours are ordered by their index in the PointIndex, and offsets are computed as p_i - y
+ * from the stored coordinates, so a neighbourhood, and every sum over it, is bitwise the same
+ * however it was gathered (see gatherNeighbourhood).
+ */
 struct Neighbourhood
 {
-  Vec3 origin = Vec3::Zero();       ///< the query point y
-  double minSqDist = 0.0;           ///< squared distance from y to the nearest point
-  double invH2 = 1.0;               ///< 1 / h^2
-  std::vector<Vec3> offsets;        ///< p_i - y
-  std::vector<double> sqDist;       ///< |p_i - y|^2
-  std::vector<double> weight;       ///< exp(-(|p_i - y|^2 - minSqDist) / h^2), in (0, 1]
-  double weightSum = 0.0;           ///< sum of weight (>= 1 whenever the cloud is not empty)
+  Vec3 origin = Vec3::Zero();  ///< the query point y
+  double minSqDist = 0.0;      ///< squared distance from y to the nearest point
+  double invH2 = 1.0;          ///< 1 / h^2
+  double weightSum = 0.0;      ///< sum of the weights (>= 1 whenever the cloud is not empty)
+  Eigen::Index count = 0;      ///< number of neighbours
+  Eigen::ArrayXd dx, dy, dz;   ///< p_i - y, per coordinate
+  Eigen::ArrayXd sqDist;       ///< |p_i - y|^2
+  Eigen::ArrayXd weight;       ///< exp(-(|p_i - y|^2 - minSqDist) / h^2), in (0, 1]
 
-  std::size_t size() const { return offsets.size(); }
+  Eigen::Index size() const { return count; }
+  auto x() const { return dx.head(count); }
+  auto y() const { return dy.head(count); }
+  auto z() const { return dz.head(count); }
+  auto d2() const { return sqDist.head(count); }
+  auto w() const { return weight.head(count); }
+  Vec3 offset(Eigen::Index i) const { return Vec3(dx[i], dy[i], dz[i]); }
+  /// <a, p_i - y> for every neighbour.
+  auto along(const Vec3& a) const { return a.x() * x() + a.y() * y() + a.z() * z(); }
   /// log of the factor that turns weight into the true Gaussian theta(y, p_i).
   double logScale() const { return -minSqDist * invH2; }
+  /// Sets size() to @p n, growing the arrays' capacity when needed.
+  void resize(Eigen::Index n);
 };
 
-/// Fills @p nb with the neighbourhood of @p y (see the file comment). Requires a non-empty index.
+/**
+ * Fills @p nb with the neighbourhood of @p y (see the file comment). Requires a non-empty index.
+ *
+ * Each thread keeps the candidate points of its last k-d tree query, fetched with a margin
+ * (a quarter of h, or a twentieth of the distance to the cloud if larger). A later query
+ * within that margin of the last fetch is answered from the candidates, which provably contain
+ * its whole neighbourhood: the nearest point is at most dmin + delta away, so every point within
+ * sqrt((dmin + delta)^2 + (cutoff h)^2) of y lies inside the fetched ball. Iterations of a
+ * projection and samples along a line thus rarely touch the tree.
+ */
 void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y,
   Neighbourhood& nb);
 
 /// c(y) - y, where c(y) = sum_i theta_N(y, p_i) p_i is the weighted centre of mass.
 Vec3 centroidOffset(const Neighbourhood& nb);
+
+/// sum_i w_i (p_i - y - m)(p_i - y - m)^T with the shifted weights (m an offset from y).
+Mat3 weightedScatter(const Neighbourhood& nb, const Vec3& m);
 
 /// sum_i w_i (p_i - y)(p_i - y)^T (shifted weights): Levin's C(y), up to the factor exp(logScale).
 Mat3 covarianceAboutQuery(const Neighbourhood& nb);

@@ -8,7 +8,16 @@ Direction LevinMLS::direction(const Vec3& x) const
 {
   thread_local Neighbourhood nb;
   gatherNeighbourhood(Index, Params, x, nb);
-  // The shift factor exp(logScale) scales C(x) and cannot move its eigenvectors.
+  // The shift factor exp(logScale) scales C(x) and cannot move its eigenvectors; normalizing
+  // (NormalizedMLS) divides it by a positive number, which cannot either.
+  return smallestEigenDirection(covarianceAboutQuery(nb), dimension(), Params.minStability);
+}
+
+Direction LevinMLS::planeFit(const Vec3& x, Vec3& offset) const
+{
+  thread_local Neighbourhood nb;
+  gatherNeighbourhood(Index, Params, x, nb);
+  offset = centroidOffset(nb);
   return smallestEigenDirection(covarianceAboutQuery(nb), dimension(), Params.minStability);
 }
 
@@ -17,15 +26,14 @@ LineSample LevinMLS::lineSample(const Vec3& y, const Vec3& a) const
   thread_local Neighbourhood nb;
   gatherNeighbourhood(Index, Params, y, nb);
   // Eq. 1 along y + t a: with s_i = <a, p_i - y>, d theta_i/dt = theta_i 2 s_i / h^2 and
-  // d s_i/dt = -1, so d/dt sum theta_i s_i^2 = sum theta_i (2 s_i^3 / h^2 - 2 s_i).
+  // d s_i/dt = -1, so d/dt sum theta_i s_i^2 = sum theta_i (2 s_i^3 / h^2 - 2 s_i), and once more
+  // d2/dt2 = sum theta_i (4 s_i^4 / h^4 - 10 s_i^2 / h^2 + 2).
   LineSample out;
-  for (std::size_t i = 0; i < nb.size(); ++i)
-  {
-    const double s = a.dot(nb.offsets[i]);
-    const double s2 = s * s;
-    out.value += nb.weight[i] * s2;
-    out.slope += nb.weight[i] * (2.0 * s2 * s * nb.invH2 - 2.0 * s);
-  }
+  const auto s = nb.along(a);
+  const double k = nb.invH2;
+  out.value = (nb.w() * s.square()).sum();
+  out.slope = (nb.w() * (2.0 * k * s.cube() - 2.0 * s)).sum();
+  out.curvature = (nb.w() * (4.0 * k * k * s.square().square() - 10.0 * k * s.square() + 2.0)).sum();
   out.logScale = nb.logScale();
   out.nearestSqDist = nb.minSqDist;
   return out;

@@ -4,6 +4,7 @@
 #include <nanoflann.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -103,6 +104,8 @@ double estimateScale(const PointIndex& index, int k, double multiplier)
 PointIndex::PointIndex(const std::vector<Vec3>& points, int dimension)
   : Dimension(dimension)
 {
+  static std::atomic<std::uint64_t> counter{ 0 };
+  Serial = ++counter;
   if (dimension != 2 && dimension != 3)
   {
     throw std::invalid_argument("PointIndex: dimension must be 2 or 3, got " + std::to_string(dimension));

@@ -47,6 +47,9 @@ public:
   const Vec3& boundsMin() const { return BoundsMin; }
   const Vec3& boundsMax() const { return BoundsMax; }
 
+  /// A number no other PointIndex of this process has: a safe cache key (addresses get reused).
+  std::uint64_t serial() const { return Serial; }
+
   /// Drops z in 2D; leaves 3D points untouched.
   Vec3 restrict(const Vec3& x) const;
 
@@ -65,6 +68,7 @@ private:
   std::vector<Vec3> Points;
   std::vector<std::size_t> OriginalIds;
   std::size_t Skipped = 0;
+  std::uint64_t Serial = 0;
   Vec3 Centroid = Vec3::Zero();
   Vec3 BoundsMin = Vec3::Zero();
   Vec3 BoundsMax = Vec3::Zero();

@@ -24,6 +24,15 @@ double SurfaceDefinition::energy(const Vec3& y, const Vec3& a) const
   return lineSample(y, a).trueValue();
 }
 
+Direction SurfaceDefinition::planeFit(const Vec3& x, Vec3& offset) const
+{
+  thread_local Neighbourhood nb;
+  const Direction d = direction(x);
+  gatherNeighbourhood(Index, Params, x, nb);
+  offset = centroidOffset(nb);
+  return d;
+}
+
 std::unique_ptr<SurfaceDefinition> makeSurface(
   Variant v, const PointIndex& index, const SurfaceParameters& params)
 {

@@ -42,6 +42,13 @@ public:
   /// e(y, a) at its true scale (may underflow to 0 for LevinMLS, never NaN).
   virtual double energy(const Vec3& y, const Vec3& a) const;
 
+  /**
+   * n(x) and c(x) - x, the offset of the normalized-weight centre of mass: what one step of the
+   * plane procedure needs. The default gathers the neighbourhood a second time; definitions whose
+   * n comes from the same weighted neighbourhood override it to gather once.
+   */
+  virtual Direction planeFit(const Vec3& x, Vec3& centroidOffset) const;
+
   const PointIndex& index() const { return Index; }
   const SurfaceParameters& parameters() const { return Params; }
   int dimension() const { return Index.dimension(); }

@@ -66,16 +66,18 @@ struct Direction
 };
 
 /**
- * Energy on the line y(t) = x + t a with a fixed, at t = 0: value e(x, a) and slope d/dt.
+ * Energy on the line y(t) = x + t a with a fixed, at t = 0: value e(x, a), slope d/dt and, where
+ * the definition has it in closed form, curvature d2/dt2 (NaN otherwise).
  *
- * Levin's unnormalized energy underflows far from the cloud, so both numbers are stored relative
- * to a scale: true value = value * exp(logScale) (likewise the slope). Signs and ratios of the
- * stored numbers stay exact even where the true values underflow to zero.
+ * Levin's unnormalized energy underflows far from the cloud, so the numbers are stored relative
+ * to a scale: true value = value * exp(logScale) (likewise slope and curvature). Signs and ratios
+ * of the stored numbers stay exact even where the true values underflow to zero.
  */
 struct LineSample
 {
   double value = 0.0;
   double slope = 0.0;
+  double curvature = std::numeric_limits<double>::quiet_NaN();
   double logScale = 0.0;
   double nearestSqDist = 0.0; ///< squared distance from y to the nearest cloud point
 

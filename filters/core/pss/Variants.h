@@ -27,20 +27,21 @@ public:
   Variant variant() const override { return Variant::LevinMLS; }
   Direction direction(const Vec3& x) const override;
   LineSample lineSample(const Vec3& y, const Vec3& a) const override;
+  Direction planeFit(const Vec3& x, Vec3& centroidOffset) const override;
 };
 
 /**
  * @brief Eq. 1 with normalized weights theta_N (Alexa et al., Sec. 4).
  *
- * Same n as LevinMLS (a positive factor does not move an argmin); the energy is a weighted mean
- * of squared plane distances, so it grows away from the cloud instead of fading out.
+ * Same n as LevinMLS (a positive factor does not move an argmin), hence the inheritance; the
+ * energy is a weighted mean of squared plane distances, so it grows away from the cloud instead
+ * of fading out.
  */
-class NormalizedMLS : public SurfaceDefinition
+class NormalizedMLS : public LevinMLS
 {
 public:
-  using SurfaceDefinition::SurfaceDefinition;
+  using LevinMLS::LevinMLS;
   Variant variant() const override { return Variant::NormalizedMLS; }
-  Direction direction(const Vec3& x) const override;
   LineSample lineSample(const Vec3& y, const Vec3& a) const override;
 };
 
@@ -56,6 +57,7 @@ public:
   using NormalizedMLS::NormalizedMLS;
   Variant variant() const override { return Variant::CenterOfMass; }
   Direction direction(const Vec3& x) const override;
+  Direction planeFit(const Vec3& x, Vec3& centroidOffset) const override;
 };
 
 /**
