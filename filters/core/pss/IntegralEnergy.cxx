@@ -101,6 +101,9 @@ double IntegralEnergy::integrate(const Vec3& x, const Vec3& a, const Vec3* slope
       derivative += weight * (p == 2 ? 2.0 * d : 1.0) * slopeDirection->dot(gradient);
     }
   };
+  // Every node lies within h * max|node| (times sqrt(2) in 3D) of x: one candidate fetch serves all.
+  const double spread = h * Rule.nodes.back() * (dimension() == 2 ? 1.0 : std::sqrt(2.0));
+  prefetchNeighbourhoods(Index, Params, origin, spread);
   double jacobian = h;
   if (dimension() == 2)
   {

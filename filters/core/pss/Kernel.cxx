@@ -53,6 +53,39 @@ void Neighbourhood::resize(Eigen::Index n)
 namespace
 {
 
+// Ascending order of 32-bit indices: least-significant-digit radix sort (three 11-bit digits)
+// for long lists, where it beats comparison sorting several times over.
+void sortIndices(std::vector<std::uint32_t>& v, std::vector<std::uint32_t>& scratch)
+{
+  if (v.size() < 96)
+  {
+    std::sort(v.begin(), v.end());
+    return;
+  }
+  scratch.resize(v.size());
+  std::uint32_t* from = v.data();
+  std::uint32_t* to = scratch.data();
+  for (int shift = 0; shift < 33; shift += 11)
+  {
+    std::size_t counts[2049] = {};
+    for (std::size_t i = 0; i < v.size(); ++i)
+    {
+      ++counts[((from[i] >> shift) & 2047u) + 1];
+    }
+    for (int b = 0; b < 2048; ++b)
+    {
+      counts[b + 1] += counts[b];
+    }
+    for (std::size_t i = 0; i < v.size(); ++i)
+    {
+      to[counts[(from[i] >> shift) & 2047u]++] = from[i];
+    }
+    std::swap(from, to);
+  }
+  // Three passes leave the result in scratch.
+  v.swap(scratch);
+}
+
 // The candidates of a thread's last k-d tree query: absolute coordinates, ordered by index.
 struct CandidateCache
 {
@@ -63,41 +96,50 @@ struct CandidateCache
   double centerMinDist = 0.0;
   double radius = 0.0;
   std::vector<std::pair<std::uint32_t, double>> found;
+  std::vector<std::uint32_t> ids;
+  std::vector<std::uint32_t> scratch;
   Eigen::ArrayXd px, py, pz;
   Eigen::Index count = 0;
 
   // True when every point within sqrt(dmin(y)^2 + band) of y is among the candidates:
   // dmin(y) <= centerMinDist + |y - center|, and that ball around y lies in the fetched one.
-  bool covers(const PointIndex& index, const SurfaceParameters& params, const Vec3& y) const
+  // (With @p extra > 0: for every query within extra of y.)
+  bool covers(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, double extra = 0.0) const
   {
     if (indexSerial != index.serial() || h != params.h || band != params.cutoff * params.cutoff * h * h)
     {
       return false;
     }
-    const double shift = (y - center).norm();
+    const double shift = (y - center).norm() + extra;
     const double reach = centerMinDist + shift;
     return std::sqrt(reach * reach + band) + shift <= radius;
   }
 
-  void fetch(const PointIndex& index, const SurfaceParameters& params, const Vec3& y)
+  // Fetches the candidates around y with a margin of at least @p minMargin.
+  void fetch(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, double minMargin = 0.0)
   {
     indexSerial = index.serial();
     h = params.h;
     band = params.cutoff * params.cutoff * h * h;
     center = y;
     centerMinDist = std::sqrt(index.nearest(y).second);
-    const double margin = std::max(0.25 * h, 0.05 * centerMinDist);
+    const double margin = std::max({ 0.25 * h, 0.05 * centerMinDist, minMargin });
     const double reach = centerMinDist + margin;
     radius = std::sqrt(reach * reach + band) + margin;
     index.withinSqRadius(y, radius * radius, found);
-    if (found.empty())
+    ids.clear();
+    for (const auto& f : found)
+    {
+      ids.push_back(f.first);
+    }
+    if (ids.empty())
     {
       // Only when the radius rounds below the nearest distance (absurd scale ratios).
-      found.emplace_back(static_cast<std::uint32_t>(index.nearest(y).first), 0.0);
+      ids.push_back(static_cast<std::uint32_t>(index.nearest(y).first));
     }
     // Index order makes every later neighbourhood independent of where this fetch was made.
-    std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    count = static_cast<Eigen::Index>(found.size());
+    sortIndices(ids, scratch);
+    count = static_cast<Eigen::Index>(ids.size());
     if (px.size() < count)
     {
       px.resize(count);
@@ -106,7 +148,7 @@ struct CandidateCache
     }
     for (Eigen::Index i = 0; i < count; ++i)
     {
-      const Vec3& p = index.point(found[static_cast<std::size_t>(i)].first);
+      const Vec3& p = index.point(ids[static_cast<std::size_t>(i)]);
       px[i] = p.x();
       py[i] = p.y();
       pz[i] = p.z();
@@ -114,11 +156,22 @@ struct CandidateCache
   }
 };
 
+thread_local CandidateCache ThreadCache;
+
 } // namespace
+
+void prefetchNeighbourhoods(const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach)
+{
+  const Vec3 c = index.restrict(center);
+  if (!ThreadCache.covers(index, params, c, reach))
+  {
+    ThreadCache.fetch(index, params, c, reach);
+  }
+}
 
 void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, Neighbourhood& nb)
 {
-  thread_local CandidateCache cache;
+  CandidateCache& cache = ThreadCache;
   thread_local Eigen::ArrayXd candidateSq;
 
   nb.origin = index.restrict(y);

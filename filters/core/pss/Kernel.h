@@ -92,6 +92,13 @@ struct Neighbourhood
 void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y,
   Neighbourhood& nb);
 
+/**
+ * Makes the calling thread's candidates (see gatherNeighbourhood) cover every query within
+ * @p reach of @p center, with at most one k-d tree query. For evaluations that spread over a known
+ * region, such as the quadrature nodes of e_I, so they do not each query the tree.
+ */
+void prefetchNeighbourhoods(const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach);
+
 /// c(y) - y, where c(y) = sum_i theta_N(y, p_i) p_i is the weighted centre of mass.
 Vec3 centroidOffset(const Neighbourhood& nb);
 

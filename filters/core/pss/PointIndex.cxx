@@ -150,6 +150,23 @@ PointIndex::PointIndex(const std::vector<Vec3>& points, int dimension)
   {
     Impl->tree = std::make_unique<KdTree<3>>(3, Impl->adaptor, params);
   }
+  // Store the points in the tree's leaf order: every leaf then covers a contiguous range of
+  // indices, so a neighbourhood reads nearby memory. The tree's nodes refer to positions in its
+  // permutation, which becomes the identity.
+  std::visit(
+    [&](auto& tree) {
+      std::vector<Vec3> ordered(Points.size());
+      std::vector<std::size_t> ids(Points.size());
+      for (std::size_t i = 0; i < Points.size(); ++i)
+      {
+        ordered[i] = Points[tree->vAcc[i]];
+        ids[i] = OriginalIds[tree->vAcc[i]];
+        tree->vAcc[i] = static_cast<std::uint32_t>(i);
+      }
+      Points.swap(ordered);
+      OriginalIds.swap(ids);
+    },
+    Impl->tree);
 }
 
 PointIndex::~PointIndex() = default;

@@ -7,8 +7,9 @@
  * keeps its scratch space on the caller's side.
  *
  * Points with a NaN or infinite coordinate are not indexed; skippedCount() says how many were
- * dropped and originalId() maps an indexed point back to its position in the input, so nothing
- * is lost silently. In 2D every z coordinate (of points and of queries) is taken as zero.
+ * dropped. The indexed points are stored in the tree's leaf order (spatially coherent), so index
+ * i is generally not input point i: originalId() maps an indexed point back to its position in
+ * the input. In 2D every z coordinate (of points and of queries) is taken as zero.
  */
 #pragma once
 
