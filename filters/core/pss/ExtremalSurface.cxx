@@ -271,6 +271,7 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   res.startDirection = dir;
   res.reason = StopReason::MaxIterations;
   ExtremumType lastType = ExtremumType::None;
+  Vec3 previousStep = Vec3::Zero();
   for (int it = 0;; ++it)
   {
     if (!dir.defined)
@@ -283,10 +284,25 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
       break;
     }
     double t = 0.0;
+    double move = 0.0;
     if (plane)
     {
       // Move x onto the plane through c(x) with normal n(x): the zero set of <n, x - c>.
       t = dir.n.dot(centroid);
+      // The iteration contracts linearly (each step a fraction r of the last, r ~ 2 sigma^2 / h^2
+      // for noise sigma along n). While it does, step to the limit of the geometric series,
+      // t / (1 - r) (Aitken's extrapolation): the fixed points are the same, reached in fewer
+      // iterations.
+      move = t;
+      const double last = previousStep.squaredNorm();
+      if (last > 0.0)
+      {
+        const double r = t * dir.n.dot(previousStep) / last;
+        if (r > 0.0 && r < 0.5)
+        {
+          move = t / (1.0 - r);
+        }
+      }
     }
     else
     {
@@ -297,9 +313,11 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
         break;
       }
       t = le.t;
+      move = t;
       lastType = le.type;
     }
-    x = index.restrict(x + t * dir.n);
+    previousStep = move * dir.n;
+    x = index.restrict(x + previousStep);
     res.iterations = it + 1;
     res.lastStep = std::abs(t);
     if (opt.recordPath)
