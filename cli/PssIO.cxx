@@ -299,12 +299,24 @@ vtkSmartPointer<vtkDataSet> ReadXML(const std::string& path)
 }
 
 template <class WriterT>
-void WriteXML(vtkDataObject* data, const std::string& path)
+void WriteXML(vtkDataObject* data, const std::string& path, Compression compression)
 {
   vtkNew<WriterT> writer;
   writer->SetFileName(path.c_str());
   writer->SetInputData(data);
   writer->SetDataModeToBinary();
+  switch (compression)
+  {
+    case Compression::LZ4:
+      writer->SetCompressorTypeToLZ4();
+      break;
+    case Compression::ZLib:
+      writer->SetCompressorTypeToZLib();
+      break;
+    case Compression::None:
+      writer->SetCompressorTypeToNone();
+      break;
+  }
   if (writer->Write() == 0)
   {
     throw std::runtime_error("cannot write " + path);
@@ -363,19 +375,19 @@ vtkSmartPointer<vtkDataSet> ReadDataSet(const std::string& path)
   throw std::runtime_error("unknown input format '" + ext + "' of " + path + " (use .vtp .vtu .vti .ply .csv .xyz)");
 }
 
-void WriteDataSet(vtkDataSet* data, const std::string& path)
+void WriteDataSet(vtkDataSet* data, const std::string& path, Compression compression)
 {
   const std::string ext = Extension(path);
   if (ext == ".vtp")
   {
-    WriteXML<vtkXMLPolyDataWriter>(AsPolyData(data), path);
+    WriteXML<vtkXMLPolyDataWriter>(AsPolyData(data), path, compression);
   }
   else if (ext == ".vtu")
   {
     vtkNew<vtkAppendFilter> toGrid;
     toGrid->AddInputData(data);
     toGrid->Update();
-    WriteXML<vtkXMLUnstructuredGridWriter>(toGrid->GetOutput(), path);
+    WriteXML<vtkXMLUnstructuredGridWriter>(toGrid->GetOutput(), path, compression);
   }
   else if (ext == ".vti")
   {
@@ -384,7 +396,7 @@ void WriteDataSet(vtkDataSet* data, const std::string& path)
     {
       throw std::runtime_error("only image data (pss sample on a grid) can be written as .vti");
     }
-    WriteXML<vtkXMLImageDataWriter>(image, path);
+    WriteXML<vtkXMLImageDataWriter>(image, path, compression);
   }
   else if (ext == ".ply")
   {

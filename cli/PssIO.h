@@ -31,8 +31,17 @@ std::string Extension(const std::string& path);
 /// Reads @p path; throws std::runtime_error with a readable message on any failure.
 vtkSmartPointer<vtkDataSet> ReadDataSet(const std::string& path);
 
+/// Compression of the XML formats (.vtp .vtu .vti): LZ4 is several times faster than zlib for
+/// files about a third larger; every VTK >= 8.1 and ParaView >= 5.5 reads all three.
+enum class Compression
+{
+  LZ4,
+  ZLib,
+  None
+};
+
 /// Writes @p data to @p path by extension; throws std::runtime_error on failure.
-void WriteDataSet(vtkDataSet* data, const std::string& path);
+void WriteDataSet(vtkDataSet* data, const std::string& path, Compression compression = Compression::LZ4);
 
 }
 

@@ -57,6 +57,7 @@ struct Run
 {
   std::string output;
   int threads = 0;
+  pss_cli::Compression compression = pss_cli::Compression::LZ4;
   bool verbose = false;
   bool progress = isatty(STDERR_FILENO) != 0;
   std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
@@ -91,6 +92,9 @@ void AddCommonOptions(OptionTable& t, Run& run)
     run.threads = pss_cli::ToInt("threads", v);
     if (run.threads < 0)
       throw UsageError{ "--threads must be >= 0" };
+  });
+  t.Value("compression", "NAME", "lz4 | zlib | none, for .vtp .vtu .vti output (default lz4)", [&](const std::string& v) {
+    run.compression = static_cast<pss_cli::Compression>(pss_cli::ToChoice("compression", v, { "lz4", "zlib", "none" }));
   });
   t.Switch("verbose", "print the wall time of each stage (read, index, compute, write) and a summary",
     [&]() { run.verbose = true; });
@@ -243,7 +247,7 @@ vtkSmartPointer<vtkPointSet> PrepareCloud(Run& run, const std::string& path, vtk
 void Write(Run& run, vtkDataSet* data, const std::string& path)
 {
   run.Stage("write", [&]() {
-    pss_cli::WriteDataSet(data, path);
+    pss_cli::WriteDataSet(data, path, run.compression);
     return 0;
   });
 }
