@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -33,8 +34,11 @@ namespace
 struct ScaledSlope
 {
   double t = 0.0;
-  double mantissa = 0.0;
+  double mantissa = 0.0;  ///< slope (signed for the kind of extremum sought), at exp(logScale)
+  double curvature = 0.0; ///< second derivative at the same scale, NaN when unknown
   double logScale = 0.0;
+  double nearestSqDist = 0.0;
+  double illinois = 1.0;  ///< Illinois down-weighting of this end in false-position steps
 };
 
 // The two mantissas brought to the larger of their scales (the smaller may underflow to zero,
@@ -42,8 +46,8 @@ struct ScaledSlope
 void commonScale(const ScaledSlope& a, const ScaledSlope& b, double& fa, double& fb)
 {
   const double l = std::max(a.logScale, b.logScale);
-  fa = a.mantissa * std::exp(a.logScale - l);
-  fb = b.mantissa * std::exp(b.logScale - l);
+  fa = a.illinois * a.mantissa * std::exp(a.logScale - l);
+  fb = b.illinois * b.mantissa * std::exp(b.logScale - l);
 }
 
 // Second derivative of t -> e(x + t n, n) at 0, expressed at the scale of @p at (multiply by
@@ -104,19 +108,26 @@ LineExtremum nearestExtremumOnLine(
   const SurfaceDefinition& s, const Vec3& x, const Vec3& a, bool seekMaximum, double maxTravel)
 {
   LineExtremum out;
-  // Seeking a maximum of e is seeking a minimum of -e: flip the slope's sign once, here.
+  // Seeking a maximum of e is seeking a minimum of -e: flip the derivatives' signs once, here.
   const double sign = seekMaximum ? -1.0 : 1.0;
   const ExtremumType wanted = seekMaximum ? ExtremumType::Maximum : ExtremumType::Minimum;
+  const double h = s.h();
   auto sample = [&](double t) {
     const LineSample ls = s.lineSample(x + t * a, a);
-    ScaledSlope out;
-    out.t = t;
-    out.mantissa = sign * ls.slope;
-    out.logScale = ls.logScale;
-    return std::make_pair(out, ls.nearestSqDist);
+    ScaledSlope p;
+    p.t = t;
+    p.mantissa = sign * ls.slope;
+    p.curvature = sign * ls.curvature; // NaN when the definition has no closed form
+    p.logScale = ls.logScale;
+    p.nearestSqDist = ls.nearestSqDist;
+    return p;
+  };
+  // Newton's step towards the root of the slope, when the curvature says we are in a basin.
+  auto newton = [](const ScaledSlope& p) {
+    return p.curvature > 0.0 ? -p.mantissa / p.curvature : std::numeric_limits<double>::quiet_NaN();
   };
 
-  auto [start, startSqDist] = sample(0.0);
+  const ScaledSlope start = sample(0.0);
   if (!std::isfinite(start.mantissa))
   {
     return out;
@@ -139,19 +150,22 @@ LineExtremum nearestExtremumOnLine(
 
   // March downhill (of sign * e) until the slope turns. Steps grow geometrically from 0.02 h but
   // stay below half the distance to the cloud (and 0.25 h near it): the energy has no structure
-  // finer than that, so no pair of extrema hides inside one step.
-  const double h = s.h();
+  // finer than that, so no pair of extrema hides inside one step. Where the curvature is known
+  // and positive, a step just past Newton's estimate of the minimum usually brackets it at once.
   double step = 0.02 * h;
   ScaledSlope previous = start;
-  double nearestSq = startSqDist;
   ScaledSlope next;
   bool bracketed = false;
   while (std::abs(previous.t) < maxTravel)
   {
-    const double cap = std::max(0.25 * h, 0.5 * std::sqrt(nearestSq));
-    step = std::min(step, cap);
-    double nextSqDist = 0.0;
-    std::tie(next, nextSqDist) = sample(previous.t + travel * step);
+    const double cap = std::max(0.25 * h, 0.5 * std::sqrt(previous.nearestSqDist));
+    double trial = std::min(step, cap);
+    const double guess = newton(previous) * travel;
+    if (guess > 0.0)
+    {
+      trial = std::min(1.1 * guess + 1e-9 * h, cap);
+    }
+    next = sample(previous.t + travel * trial);
     if (!std::isfinite(next.mantissa))
     {
       return out;
@@ -162,7 +176,6 @@ LineExtremum nearestExtremumOnLine(
       break;
     }
     previous = next;
-    nearestSq = nextSqDist;
     step *= 1.6;
   }
   if (!bracketed)
@@ -170,46 +183,55 @@ LineExtremum nearestExtremumOnLine(
     return out;
   }
 
-  // Illinois false position on the slope inside [previous, next]: superlinear, and it keeps the
-  // bracket, so it cannot wander to another extremum.
+  // Refine the root of the slope inside [lo, hi]: Newton from the better end when its step stays
+  // inside the bracket, else Illinois false position. Both keep the bracket, so the search cannot
+  // wander to another extremum.
   ScaledSlope lo = previous; // travel * slope < 0
   ScaledSlope hi = next;     // travel * slope >= 0
   const double tol = 1e-12 * h;
   int lastMoved = 0;
   double root = hi.t;
-  for (int iter = 0; iter < 200 && std::abs(hi.t - lo.t) > tol && hi.mantissa != 0.0; ++iter)
+  double lastStep = std::numeric_limits<double>::infinity();
+  for (int iter = 0; iter < 200 && std::abs(hi.t - lo.t) > tol && hi.mantissa != 0.0 && lastStep > tol; ++iter)
   {
-    double flo = 0.0;
-    double fhi = 0.0;
-    commonScale(lo, hi, flo, fhi);
-    double t = (lo.t * fhi - hi.t * flo) / (fhi - flo);
     const double left = std::min(lo.t, hi.t);
     const double right = std::max(lo.t, hi.t);
-    if (!(t > left && t < right))
+    const ScaledSlope& best = std::abs(lo.mantissa) * std::exp(lo.logScale - hi.logScale) < std::abs(hi.mantissa) ? lo : hi;
+    double t = best.t + newton(best);
+    const bool newtonStep = t > left && t < right;
+    if (!newtonStep)
     {
-      t = 0.5 * (lo.t + hi.t);
+      double flo = 0.0;
+      double fhi = 0.0;
+      commonScale(lo, hi, flo, fhi);
+      t = (lo.t * fhi - hi.t * flo) / (fhi - flo);
+      if (!(t > left && t < right))
+      {
+        t = 0.5 * (lo.t + hi.t);
+      }
     }
-    const ScaledSlope mid = sample(t).first;
+    const ScaledSlope mid = sample(t);
     if (!std::isfinite(mid.mantissa))
     {
       return out;
     }
+    lastStep = newtonStep ? std::abs(t - best.t) : std::numeric_limits<double>::infinity();
     root = t;
     if (travel * mid.mantissa >= 0.0)
     {
       hi = mid;
-      if (lastMoved == 1)
+      if (lastMoved == 1 && !newtonStep)
       {
-        lo.mantissa *= 0.5;
+        lo.illinois *= 0.5;
       }
       lastMoved = 1;
     }
     else
     {
       lo = mid;
-      if (lastMoved == -1)
+      if (lastMoved == -1 && !newtonStep)
       {
-        hi.mantissa *= 0.5;
+        hi.illinois *= 0.5;
       }
       lastMoved = -1;
     }
