@@ -114,13 +114,18 @@ RowResult ProjectRow(const std::vector<pss::Vec3>& cloud, int dimension, double 
   options.procedure = procedure;
   options.maxIterations = 10;
   options.tolerance = 1e-6;
-  std::vector<pss::Vec3> starts;
+  // Every point of the cloud, or an evenly spread subset (no copy when it is all of them).
   const std::size_t n = std::min(maxStarts, cloud.size());
-  starts.reserve(n);
-  for (std::size_t i = 0; i < n; ++i)
+  std::vector<pss::Vec3> subset;
+  if (n < cloud.size())
   {
-    starts.push_back(cloud[i * cloud.size() / n]);
+    subset.reserve(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      subset.push_back(cloud[i * cloud.size() / n]);
+    }
   }
+  const std::vector<pss::Vec3>& starts = n < cloud.size() ? subset : cloud;
   const auto t0 = std::chrono::steady_clock::now();
   const auto results = pss::projectAll(*surface, starts, options, threads);
   const double seconds = Seconds(t0);
