@@ -2,12 +2,15 @@
 #include "PointSetSurfacesVTKUtilities.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkObject.h"
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIntArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkPointSetSurface.h"
+
+#include <algorithm>
 
 namespace pss_vtk
 {
@@ -53,6 +56,25 @@ void AddSurfaceFieldData(vtkDataObject* output, vtkPointSetSurface* surface)
   dimension->SetValue(0, surface->GetEffectiveDimension());
   output->GetFieldData()->AddArray(scale);
   output->GetFieldData()->AddArray(dimension);
+}
+
+vtkMTimeType LatestMTime(vtkMTimeType own, vtkObject* part)
+{
+  return part ? std::max(own, part->GetMTime()) : own;
+}
+
+void PrintSurface(ostream& os, vtkIndent indent, vtkPointSetSurface* surface)
+{
+  os << indent << "Surface: ";
+  if (surface)
+  {
+    os << "\n";
+    surface->PrintSelf(os, indent.GetNextIndent());
+  }
+  else
+  {
+    os << "(none)\n";
+  }
 }
 
 void WarnAboutSkippedPoints(vtkAlgorithm* algorithm, vtkPointSetSurface* surface)

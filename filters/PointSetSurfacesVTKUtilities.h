@@ -8,6 +8,7 @@
 #define PointSetSurfacesVTKUtilities_h
 
 #include "vtkCellArray.h"
+#include "vtkIndent.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkSmartPointer.h"
@@ -18,6 +19,7 @@
 
 class vtkAlgorithm;
 class vtkDataObject;
+class vtkObject;
 class vtkPointSetSurface;
 
 namespace pss_vtk
@@ -43,6 +45,13 @@ vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n);
 /// Records the h and the dimension a prepared @p surface used as field data "ScaleFactor" and
 /// "Dimension" of @p output, so files written downstream say how they were made.
 void AddSurfaceFieldData(vtkDataObject* output, vtkPointSetSurface* surface);
+
+/// The later of @p own and the modification time of @p part (just @p own when part is null):
+/// how the filters fold their vtkPointSetSurface into GetMTime().
+vtkMTimeType LatestMTime(vtkMTimeType own, vtkObject* part);
+
+/// The "Surface:" block of the filters' PrintSelf.
+void PrintSurface(ostream& os, vtkIndent indent, vtkPointSetSurface* surface);
 
 /// A warning on @p algorithm when the prepared cloud had points with NaN/Inf coordinates.
 void WarnAboutSkippedPoints(vtkAlgorithm* algorithm, vtkPointSetSurface* surface);

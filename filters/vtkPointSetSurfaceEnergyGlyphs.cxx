@@ -119,12 +119,7 @@ double vtkPointSetSurfaceEnergyGlyphs::GetEffectiveScale() const
 
 vtkMTimeType vtkPointSetSurfaceEnergyGlyphs::GetMTime()
 {
-  vtkMTimeType t = this->Superclass::GetMTime();
-  if (this->Surface)
-  {
-    t = std::max(t, this->Surface->GetMTime());
-  }
-  return t;
+  return pss_vtk::LatestMTime(this->Superclass::GetMTime(), this->Surface);
 }
 
 int vtkPointSetSurfaceEnergyGlyphs::FillInputPortInformation(int port, vtkInformation* info)
@@ -409,14 +404,5 @@ void vtkPointSetSurfaceEnergyGlyphs::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ScaleMode: " << (this->ScaleMode == SCALE_PER_GLYPH ? "PerGlyph" : "Global") << "\n";
   os << indent << "SegmentLength: " << this->SegmentLength << " (h)\n";
   os << indent << "GlyphScale: " << this->GlyphScale << "\n";
-  os << indent << "Surface: ";
-  if (this->Surface)
-  {
-    os << "\n";
-    this->Surface->PrintSelf(os, indent.GetNextIndent());
-  }
-  else
-  {
-    os << "(none)\n";
-  }
+  pss_vtk::PrintSurface(os, indent, this->Surface);
 }

@@ -82,12 +82,7 @@ double vtkPointSetSurfaceFieldSampler::GetEffectiveScale() const
 
 vtkMTimeType vtkPointSetSurfaceFieldSampler::GetMTime()
 {
-  vtkMTimeType t = this->Superclass::GetMTime();
-  if (this->Surface)
-  {
-    t = std::max(t, this->Surface->GetMTime());
-  }
-  return t;
+  return pss_vtk::LatestMTime(this->Superclass::GetMTime(), this->Surface);
 }
 
 int vtkPointSetSurfaceFieldSampler::FillInputPortInformation(int port, vtkInformation* info)
@@ -486,14 +481,5 @@ void vtkPointSetSurfaceFieldSampler::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DomainMaxNormalAngle: " << this->DomainMaxNormalAngle << "\n";
   os << indent << "MaxIterations: " << this->MaxIterations << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
-  os << indent << "Surface: ";
-  if (this->Surface)
-  {
-    os << "\n";
-    this->Surface->PrintSelf(os, indent.GetNextIndent());
-  }
-  else
-  {
-    os << "(none)\n";
-  }
+  pss_vtk::PrintSurface(os, indent, this->Surface);
 }

@@ -2,6 +2,7 @@
 #include "vtkPointSetSurfaceImplicitFunction.h"
 
 #include "PointSetSurfacesFieldEvaluation.h"
+#include "PointSetSurfacesVTKUtilities.h"
 #include "vtkPointSetSurface.h"
 
 #include "vtkNew.h"
@@ -79,20 +80,9 @@ void vtkPointSetSurfaceImplicitFunction::SetPoints(vtkPoints* points)
 
 vtkMTimeType vtkPointSetSurfaceImplicitFunction::GetMTime()
 {
-  vtkMTimeType t = this->Superclass::GetMTime();
-  if (this->Surface)
-  {
-    t = std::max(t, this->Surface->GetMTime());
-  }
-  if (this->Input)
-  {
-    t = std::max(t, this->Input->GetMTime());
-    if (vtkPoints* points = this->Input->GetPoints())
-    {
-      t = std::max(t, points->GetMTime());
-    }
-  }
-  return t;
+  vtkMTimeType t = pss_vtk::LatestMTime(this->Superclass::GetMTime(), this->Surface);
+  t = pss_vtk::LatestMTime(t, this->Input);
+  return pss_vtk::LatestMTime(t, this->Input ? this->Input->GetPoints() : nullptr);
 }
 
 bool vtkPointSetSurfaceImplicitFunction::IsReady(bool acquire)
@@ -228,14 +218,5 @@ void vtkPointSetSurfaceImplicitFunction::PrintSelf(ostream& os, vtkIndent indent
      << ", " << this->ReferenceDirection[2] << ")\n";
   os << indent << "FiniteDifferenceStep: " << this->FiniteDifferenceStep << "\n";
   os << indent << "Input: " << static_cast<void*>(this->Input) << "\n";
-  os << indent << "Surface: ";
-  if (this->Surface)
-  {
-    os << "\n";
-    this->Surface->PrintSelf(os, indent.GetNextIndent());
-  }
-  else
-  {
-    os << "(none)\n";
-  }
+  pss_vtk::PrintSurface(os, indent, this->Surface);
 }

@@ -55,12 +55,7 @@ double vtkPointSetSurfaceProjection::GetEffectiveScale() const
 
 vtkMTimeType vtkPointSetSurfaceProjection::GetMTime()
 {
-  vtkMTimeType t = this->Superclass::GetMTime();
-  if (this->Surface)
-  {
-    t = std::max(t, this->Surface->GetMTime());
-  }
-  return t;
+  return pss_vtk::LatestMTime(this->Superclass::GetMTime(), this->Surface);
 }
 
 int vtkPointSetSurfaceProjection::FillInputPortInformation(int port, vtkInformation* info)
@@ -228,14 +223,5 @@ void vtkPointSetSurfaceProjection::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxTravel: " << this->MaxTravel << "\n";
   os << indent << "SeekMaxima: " << (this->SeekMaxima ? "On" : "Off") << "\n";
   os << indent << "GenerateProjectionLines: " << (this->GenerateProjectionLines ? "On" : "Off") << "\n";
-  os << indent << "Surface: ";
-  if (this->Surface)
-  {
-    os << "\n";
-    this->Surface->PrintSelf(os, indent.GetNextIndent());
-  }
-  else
-  {
-    os << "(none)\n";
-  }
+  pss_vtk::PrintSurface(os, indent, this->Surface);
 }
