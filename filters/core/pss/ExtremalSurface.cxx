@@ -151,7 +151,8 @@ LineExtremum nearestExtremumOnLine(
   // March downhill (of sign * e) until the slope turns. Steps grow geometrically from 0.02 h but
   // stay below half the distance to the cloud (and 0.25 h near it): the energy has no structure
   // finer than that, so no pair of extrema hides inside one step. Where the curvature is known
-  // and positive, a step just past Newton's estimate of the minimum usually brackets it at once.
+  // and positive and Newton's estimate of the minimum lies beyond the step, the step goes just
+  // past it, which usually brackets the minimum at once.
   double step = 0.02 * h;
   ScaledSlope previous = start;
   ScaledSlope next;
@@ -159,12 +160,10 @@ LineExtremum nearestExtremumOnLine(
   while (std::abs(previous.t) < maxTravel)
   {
     const double cap = std::max(0.25 * h, 0.5 * std::sqrt(previous.nearestSqDist));
-    double trial = std::min(step, cap);
+    // Newton may lengthen a step (to land just past a minimum it sees farther on), never shorten
+    // it: a shrinking sequence of Newton steps that never brackets would stall the march.
     const double guess = newton(previous) * travel;
-    if (guess > 0.0)
-    {
-      trial = std::min(1.1 * guess + 1e-9 * h, cap);
-    }
+    const double trial = std::min(std::max(step, guess > 0.0 ? 1.1 * guess : 0.0), cap);
     next = sample(previous.t + travel * trial);
     if (!std::isfinite(next.mantissa))
     {
