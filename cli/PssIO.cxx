@@ -28,6 +28,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -135,6 +136,13 @@ vtkSmartPointer<vtkDataSet> ReadTable(const std::string& path, bool csv)
       {
         throw std::runtime_error(path + ":" + std::to_string(lineNumber) + ": need at least two columns (x y)");
       }
+      // Every column of the header must have its numbers (a header wider than the rows once
+      // sent the x or y lookup past the last column).
+      if (!names.empty() && names.size() != width)
+      {
+        throw std::runtime_error(path + ":" + std::to_string(lineNumber) + ": the header names " +
+          std::to_string(names.size()) + " columns, this row has " + std::to_string(width));
+      }
       columns.resize(width);
     }
     if (values.size() != width)
@@ -217,10 +225,18 @@ void WriteTable(vtkDataSet* data, const std::string& path, bool csv)
         continue;
       }
       arrays.push_back(array);
+      // A column name must survive being read back: no separators, line breaks or control
+      // characters, and not empty (an unnamed column would shift every later one).
+      std::string name = array->GetName();
+      for (char& ch : name)
+      {
+        ch = ch == ',' || std::iscntrl(static_cast<unsigned char>(ch)) ? '_' : ch;
+      }
+      name = Trim(name).empty() ? "array" + std::to_string(arrays.size()) : name;
       const int nc = array->GetNumberOfComponents();
       for (int c = 0; c < nc; ++c)
       {
-        out << ',' << array->GetName();
+        out << ',' << name;
         if (nc > 1)
         {
           out << '_' << c;
@@ -279,6 +295,357 @@ vtkSmartPointer<vtkPolyData> AsPolyData(vtkDataSet* data)
   poly->SetVerts(verts);
   return poly;
 }
+
+// PLY files are checked here, header and body, before VTK's reader sees them: that reader (the
+// Stanford ply library) trusts the file, and a header without end_header, an unknown type, a list
+// where it expects a number, a truncated body or a blank line inside an ASCII body make it read
+// freed or unallocated memory, or abort on an assert (found by tests/fuzz/FuzzCliInput.cxx).
+// What passes is exactly what it reads safely; everything else fails with the line or element
+// that is wrong.
+namespace ply
+{
+
+struct Type
+{
+  int size = 0;   // bytes
+  char kind = 0;  // 'i' signed integer, 'u' unsigned integer, 'f' floating point
+};
+
+// The type names VTK's reader knows, nothing else.
+bool LookUpType(const std::string& name, Type& type)
+{
+  static const struct
+  {
+    const char* name;
+    Type type;
+  } table[] = { { "char", { 1, 'i' } }, { "int8", { 1, 'i' } }, { "uchar", { 1, 'u' } }, { "uint8", { 1, 'u' } },
+    { "short", { 2, 'i' } }, { "int16", { 2, 'i' } }, { "ushort", { 2, 'u' } }, { "uint16", { 2, 'u' } },
+    { "int", { 4, 'i' } }, { "int32", { 4, 'i' } }, { "uint", { 4, 'u' } }, { "uint32", { 4, 'u' } },
+    { "float", { 4, 'f' } }, { "float32", { 4, 'f' } }, { "double", { 8, 'f' } }, { "float64", { 8, 'f' } } };
+  for (const auto& entry : table)
+  {
+    if (name == entry.name)
+    {
+      type = entry.type;
+      return true;
+    }
+  }
+  return false;
+}
+
+struct Property
+{
+  std::string name;
+  bool list = false;
+  Type count; // list length type
+  Type item;
+};
+
+struct Element
+{
+  std::string name;
+  long long count = 0;
+  std::vector<Property> properties;
+};
+
+std::vector<std::string> Words(const std::string& line)
+{
+  std::vector<std::string> words;
+  std::size_t i = 0;
+  while (i < line.size())
+  {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
+    {
+      ++i;
+    }
+    const std::size_t begin = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r')
+    {
+      ++i;
+    }
+    if (i > begin)
+    {
+      words.push_back(line.substr(begin, i - begin));
+    }
+  }
+  return words;
+}
+
+bool IsCount(const std::string& word, long long limit, long long& value)
+{
+  if (word.empty() || word.size() > 12 ||
+    !std::all_of(word.begin(), word.end(), [](unsigned char c) { return std::isdigit(c) != 0; }))
+  {
+    return false;
+  }
+  value = std::stoll(word);
+  return value <= limit;
+}
+
+bool IsNumber(const std::string& word)
+{
+  char* end = nullptr;
+  std::strtod(word.c_str(), &end);
+  return !word.empty() && end == word.c_str() + word.size();
+}
+
+// An unsigned or signed integer of @p type at @p p (the count of a binary list).
+long long DecodeCount(const unsigned char* p, const Type& type, bool bigEndian)
+{
+  unsigned long long bits = 0;
+  for (int b = 0; b < type.size; ++b)
+  {
+    bits |= static_cast<unsigned long long>(p[bigEndian ? type.size - 1 - b : b]) << (8 * b);
+  }
+  if (type.kind == 'i' && type.size < 8 && (bits >> (8 * type.size - 1)) != 0)
+  {
+    return -1; // negative
+  }
+  return static_cast<long long>(bits);
+}
+
+// Longest line VTK's ply library reads in one piece (its BIG_STRING buffer is 4096 bytes).
+constexpr std::size_t MaxLine = 4000;
+
+void Validate(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string where = path + ": not a PLY file VTK can read safely: ";
+  std::size_t pos = 0;
+  std::size_t lineNumber = 0;
+  // The next line without its '\n'; false at the end of the data.
+  auto nextLine = [&](std::string& line) {
+    if (pos >= data.size())
+    {
+      return false;
+    }
+    std::size_t end = data.find('\n', pos);
+    if (end == std::string::npos)
+    {
+      end = data.size();
+    }
+    line.assign(data, pos, end - pos);
+    pos = end < data.size() ? end + 1 : data.size();
+    ++lineNumber;
+    return true;
+  };
+  auto fail = [&](const std::string& what) {
+    throw std::runtime_error(where + "line " + std::to_string(lineNumber) + ": " + what);
+  };
+
+  // Header.
+  std::string line;
+  std::string format;
+  std::vector<Element> elements;
+  bool ended = false;
+  while (!ended && nextLine(line))
+  {
+    if (line.size() > MaxLine)
+    {
+      fail("header line longer than " + std::to_string(MaxLine) + " characters");
+    }
+    const std::vector<std::string> w = Words(line);
+    if (lineNumber == 1)
+    {
+      if (w.size() != 1 || w[0] != "ply")
+      {
+        fail("the first line must be 'ply'");
+      }
+      continue;
+    }
+    if (w.empty())
+    {
+      fail("blank line in the header");
+    }
+    if (w[0] == "comment" || w[0] == "obj_info")
+    {
+      continue;
+    }
+    if (w[0] == "format")
+    {
+      if (!format.empty() || w.size() != 3 ||
+        (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian") || w[2] != "1.0")
+      {
+        fail("expected one 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+      }
+      format = w[1];
+    }
+    else if (w[0] == "element")
+    {
+      Element e;
+      if (w.size() != 3 || !IsCount(w[2], 2147483647LL, e.count))
+      {
+        fail("expected 'element NAME COUNT' with a count below 2^31");
+      }
+      e.name = w[1];
+      for (const Element& other : elements)
+      {
+        if (other.name == e.name)
+        {
+          fail("element '" + e.name + "' declared twice");
+        }
+      }
+      elements.push_back(e);
+    }
+    else if (w[0] == "property")
+    {
+      if (elements.empty())
+      {
+        fail("a property before any element");
+      }
+      Property p;
+      if (w.size() == 3 && LookUpType(w[1], p.item))
+      {
+        p.name = w[2];
+      }
+      else if (w.size() == 5 && w[1] == "list" && LookUpType(w[2], p.count) && p.count.kind != 'f' &&
+        LookUpType(w[3], p.item))
+      {
+        p.list = true;
+        p.name = w[4];
+      }
+      else
+      {
+        fail("expected 'property TYPE NAME' or 'property list INTEGER_TYPE TYPE NAME' with a known type");
+      }
+      elements.back().properties.push_back(p);
+    }
+    else if (w[0] == "end_header" && w.size() == 1)
+    {
+      ended = true;
+    }
+    else
+    {
+      fail("unknown header line '" + w[0] + "'");
+    }
+  }
+  if (!ended)
+  {
+    fail("the header has no end_header");
+  }
+  if (format.empty())
+  {
+    fail("the header has no format line");
+  }
+
+  // The properties VTK's reader takes, with the shape it takes them in.
+  const Element* vertex = nullptr;
+  for (const Element& e : elements)
+  {
+    static const char* const vertexScalars[] = { "x", "y", "z", "u", "v", "texture_u", "texture_v", "nx", "ny",
+      "nz", "red", "green", "blue", "alpha", "diffuse_red", "diffuse_green", "diffuse_blue" };
+    static const char* const faceScalars[] = { "intensity", "red", "green", "blue", "alpha" };
+    static const char* const faceLists[] = { "vertex_indices", "vertex_index", "texcoord" };
+    vertex = e.name == "vertex" ? &e : vertex;
+    if (e.count > 0 && e.properties.empty())
+    {
+      throw std::runtime_error(where + "element '" + e.name + "' has rows but no properties");
+    }
+    for (const Property& p : e.properties)
+    {
+      auto among = [&](const auto& names) {
+        return std::any_of(std::begin(names), std::end(names), [&](const char* n) { return p.name == n; });
+      };
+      const bool mustBeScalar = (e.name == "vertex" && among(vertexScalars)) || (e.name == "face" && among(faceScalars));
+      const bool mustBeList = e.name == "face" && among(faceLists);
+      if ((mustBeScalar && p.list) || (mustBeList && !p.list))
+      {
+        throw std::runtime_error(where + "property '" + p.name + "' of element '" + e.name + "' must " +
+          (p.list ? "not " : "") + "be a list");
+      }
+    }
+  }
+  auto has = [&](const char* name) {
+    return vertex && std::any_of(vertex->properties.begin(), vertex->properties.end(),
+                       [&](const Property& p) { return p.name == name; });
+  };
+  if (!has("x") || !has("y") || !has("z"))
+  {
+    throw std::runtime_error(where + "no 'vertex' element with x, y and z properties");
+  }
+
+  // Body: every element row complete, with a number for every value.
+  if (format == "ascii")
+  {
+    for (const Element& e : elements)
+    {
+      for (long long r = 0; r < e.count; ++r)
+      {
+        if (!nextLine(line))
+        {
+          throw std::runtime_error(where + "the file ends after " + std::to_string(r) + " of " +
+            std::to_string(e.count) + " '" + e.name + "' rows");
+        }
+        if (line.size() > MaxLine)
+        {
+          fail("longer than " + std::to_string(MaxLine) + " characters");
+        }
+        const std::vector<std::string> w = Words(line);
+        std::size_t k = 0;
+        for (const Property& p : e.properties)
+        {
+          long long n = 1;
+          if (p.list && (k >= w.size() || !IsCount(w[k++], 1000000, n)))
+          {
+            fail("'" + e.name + "' row " + std::to_string(r) + ": the length of list '" + p.name +
+              "' must be an integer in [0, 1e6]");
+          }
+          for (long long i = 0; i < n; ++i, ++k)
+          {
+            if (k >= w.size() || !IsNumber(w[k]))
+            {
+              fail("'" + e.name + "' row " + std::to_string(r) + ": missing or non-numeric value of '" + p.name + "'");
+            }
+          }
+        }
+        if (k != w.size())
+        {
+          fail("'" + e.name + "' row " + std::to_string(r) + ": " + std::to_string(w.size() - k) + " values too many");
+        }
+      }
+    }
+    return;
+  }
+  const bool bigEndian = format == "binary_big_endian";
+  const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+  for (const Element& e : elements)
+  {
+    for (long long r = 0; r < e.count; ++r)
+    {
+      for (const Property& p : e.properties)
+      {
+        long long n = 1;
+        if (p.list)
+        {
+          if (data.size() - pos < static_cast<std::size_t>(p.count.size))
+          {
+            n = -2;
+          }
+          else
+          {
+            n = DecodeCount(bytes + pos, p.count, bigEndian);
+            pos += static_cast<std::size_t>(p.count.size);
+          }
+          if (n < 0 || n > 1000000)
+          {
+            throw std::runtime_error(where + "'" + e.name + "' row " + std::to_string(r) + ": list '" + p.name +
+              (n == -2 ? "' is cut off" : "' has a length outside [0, 1e6]"));
+          }
+        }
+        const std::size_t need = static_cast<std::size_t>(n) * static_cast<std::size_t>(p.item.size);
+        if (data.size() - pos < need)
+        {
+          throw std::runtime_error(where + "the file ends inside '" + e.name + "' row " + std::to_string(r) +
+            " of " + std::to_string(e.count));
+        }
+        pos += need;
+      }
+    }
+  }
+}
+
+} // namespace ply
 
 template <class ReaderT>
 vtkSmartPointer<vtkDataSet> ReadXML(const std::string& path)
@@ -363,6 +730,7 @@ vtkSmartPointer<vtkDataSet> ReadDataSet(const std::string& path)
     {
       throw std::runtime_error("cannot read " + path + " as PLY");
     }
+    ply::Validate(path);
     reader->SetFileName(path.c_str());
     reader->Update();
     vtkSmartPointer<vtkDataSet> out = reader->GetOutput();

@@ -96,7 +96,9 @@ FieldValues FieldEvaluator::Evaluate(const double xIn[3], unsigned parts) const
     const pss::ImplicitSample s = pss::evaluateImplicit(this->Definition, x, this->Orient);
     if (s.direction.n.allFinite())
     {
-      out.normal = s.direction.n;
+      // Zero where n is undefined (FieldValues::normal): the eigenvector of a degenerate
+      // covariance is an arbitrary direction, not a normal.
+      out.normal = s.direction.defined ? s.direction.n : pss::Vec3::Zero();
     }
     else
     {

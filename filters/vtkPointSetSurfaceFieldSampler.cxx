@@ -458,8 +458,10 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
   {
     outPD->AddArray(label);
   }
-  outPD->SetVectors(normal);
-  outPD->SetScalars(g);
+  // SetActive* only moves the flags: SetScalars/SetVectors would drop the probe's own active
+  // arrays, which are passed through.
+  outPD->SetActiveVectors(normal->GetName());
+  outPD->SetActiveScalars(g->GetName());
   return 1;
 }
 

@@ -97,10 +97,14 @@ ImplicitSample evaluateImplicit(const SurfaceDefinition& s, const Vec3& xIn, con
   const LineSample at = s.lineSample(x, n);
   const double scale = std::exp(at.logScale);
   out.energy = at.value * scale;
+  if (!out.direction.defined)
+  {
+    return out; // n(x) is not unique: g and curvature 0, type None (see the header)
+  }
   out.g = at.slope * scale;
   const double curvature = scaledCurvature(s, x, n, at);
   out.curvature = curvature * scale;
-  out.type = out.direction.defined ? typeFromCurvature(curvature) : ExtremumType::None;
+  out.type = typeFromCurvature(curvature);
   return out;
 }
 

@@ -1,0 +1,1066 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * pss-paper-figures: the main demo. Reproduces the figures of Amenta & Kil, "The Domain of a
+ * Point Set Surface", as VTK data and PNG images, and checks the paper's claims as numbers.
+ *
+ *   pss-paper-figures [--out DIR] [--no-render] [--check] [--threads N] [--renderer SCRIPT]
+ *
+ * Everything is computed with the PointSetSurfaces VTK filters (projection with projection lines
+ * and domain labels, field sampling on grids, energy glyphs) and stock VTK (vtkStreamTracer on the
+ * sampled n, vtkContourFilter on the sampled energy and delta). Written into DIR (default
+ * ./paper-figures):
+ * - fig01 / fig02: the noisy curve (h = 5) projected with Levin's MLS and with the integral
+ *   variant: start-to-end projection lines and end points, with an `Outcome` array;
+ * - fig05: energy glyphs and best-fitting lines at heights 0 .. 2 h above a line, MLS and e_I;
+ * - fig06: the corner for Levin, normalized MLS, center of mass and integral: glyphs, sampled
+ *   fields, streamlines of n, iso-contours of e(x, n(x)), surface points reached from 2000
+ *   uniform random starts;
+ * - fig07: delta on a grid (intensity) and its iso-contours;
+ * - fig09 / fig10: the noisy curve at h = 10 for Levin and integral: streamlines, iso-contours,
+ *   minima (blue) and maxima (green) reached from random starts, near-singular points of n;
+ * - paper_table.csv (also printed): per scene and variant, the fraction of start points that land
+ *   on the true curve, the number of spurious surface points, Levin's flip height and the domain
+ *   half-width on the line scene;
+ * - corner_breakdown.csv (also printed): where each definition's end points miss the corner (past
+ *   the open ends, behind the apex, elsewhere) and where starts on the bisector end;
+ * - paper_checks.json: the acceptance numbers with their bounds (--check: exit status 1 when one
+ *   misses its bound).
+ * Then, unless --no-render, examples/pvpython/render_paper_figures.py renders the PNG images with
+ * pvbatch (under xvfb-run when there is no display); without pvbatch the images are skipped with
+ * a message and the data files remain.
+ */
+#include "PaperScenes.h"
+
+#include "vtkPointSetSurfaceEnergyGlyphs.h"
+#include "vtkPointSetSurfaceFieldSampler.h"
+
+#include "vtkCellArray.h"
+#include "vtkContourFilter.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkMath.h"
+#include "vtkSMPTools.h"
+#include "vtkStaticPointLocator.h"
+#include "vtkStreamTracer.h"
+#include "vtkStringArray.h"
+#include "vtkXMLImageDataWriter.h"
+#include "vtkXMLPolyDataWriter.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#ifndef PSS_PAPER_RENDER_SCRIPT
+#define PSS_PAPER_RENDER_SCRIPT "render_paper_figures.py"
+#endif
+
+namespace
+{
+
+using namespace pss_paper;
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct Options
+{
+  std::string out = "paper-figures";
+  bool render = true;
+  bool check = false;
+  int threads = 0;
+  std::string renderer = PSS_PAPER_RENDER_SCRIPT;
+};
+
+const char* const Usage =
+  "usage: pss-paper-figures [--out DIR] [--no-render] [--check] [--threads N] [--renderer SCRIPT]\n"
+  "Reproduces the figures of Amenta & Kil, \"The Domain of a Point Set Surface\" (VTK files and\n"
+  "PNG images in DIR, default ./paper-figures), prints the table of measured numbers and checks\n"
+  "the paper's claims.\n"
+  "  --out DIR         output folder (created)\n"
+  "  --no-render       write the data and the table only, no PNG images\n"
+  "  --check           exit with status 1 when a checked number misses its bound\n"
+  "  --threads N       threads of the filters (default: all cores)\n"
+  "  --renderer SCRIPT the pvbatch script (default: the source tree's render_paper_figures.py)\n";
+
+Options Parse(int argc, char** argv)
+{
+  Options o;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string flag = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc)
+      {
+        throw std::invalid_argument(flag + " needs a value");
+      }
+      return argv[++i];
+    };
+    if (flag == "--help" || flag == "-h")
+    {
+      std::cout << Usage;
+      std::exit(0);
+    }
+    else if (flag == "--out")
+      o.out = value();
+    else if (flag == "--no-render")
+      o.render = false;
+    else if (flag == "--check")
+      o.check = true;
+    else if (flag == "--renderer")
+      o.renderer = value();
+    else if (flag == "--threads")
+    {
+      const std::string v = value();
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if (end == v.c_str() || *end != '\0' || n < 0 || n > 4096)
+      {
+        throw std::invalid_argument("--threads expects a whole number >= 0, got '" + v + "'");
+      }
+      o.threads = static_cast<int>(n);
+    }
+    else
+      throw std::invalid_argument("unknown option " + flag + " (see --help)");
+  }
+  return o;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Files
+
+fs::path OutDir;
+
+// Spacing of the sampling grids, in units of the scene's h.
+constexpr double kCornerGridSpacing = 0.1;
+constexpr double kDeltaGridSpacing = 0.1;
+constexpr double kWideGridSpacing = 0.15;
+
+// Writes to a temporary name, then renames: a reader (or a second demo writing the same folder)
+// never sees a half-written file.
+template <class WriterT, class DataT>
+void WriteXML(DataT* data, const std::string& name)
+{
+  const fs::path target = OutDir / name;
+  const fs::path temporary = OutDir / ("." + name + ".tmp" + std::to_string(getpid()));
+  vtkNew<WriterT> writer;
+  writer->SetFileName(temporary.string().c_str());
+  writer->SetInputData(data);
+  writer->SetDataModeToAppended();
+  writer->SetCompressorTypeToZLib();
+  if (!writer->Write() || writer->GetErrorCode() != 0)
+  {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw std::runtime_error("cannot write " + target.string());
+  }
+  fs::rename(temporary, target);
+}
+
+void Write(vtkPolyData* data, const std::string& name)
+{
+  WriteXML<vtkXMLPolyDataWriter>(data, name);
+}
+
+void Write(vtkImageData* data, const std::string& name)
+{
+  WriteXML<vtkXMLImageDataWriter>(data, name);
+}
+
+// A title and the h of a figure's data, as field data (the renderer reads them).
+void Label(vtkDataObject* data, const std::string& title, double h)
+{
+  vtkNew<vtkStringArray> t;
+  t->SetName("Title");
+  t->InsertNextValue(title);
+  data->GetFieldData()->AddArray(t);
+  vtkNew<vtkDoubleArray> s;
+  s->SetName("SceneH");
+  s->InsertNextValue(h);
+  data->GetFieldData()->AddArray(s);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fields on grids, streamlines, contours: VTK filters over the sampler's output
+
+double Percentile(std::vector<double> v, double q)
+{
+  if (v.empty())
+  {
+    return 0.0;
+  }
+  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size() - 1)));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
+/**
+ * n, e, delta, g, stability on a grid over the cloud's bounds grown by 3 h, n oriented for stream
+ * tracers (PROPAGATE), plus `LogEnergy` = log10 e (floored at the smallest positive value: Levin's
+ * energy may underflow to 0 far away).
+ */
+vtkSmartPointer<vtkImageData> SampleField(const Scene& scene, int variant, double spacingInH)
+{
+  const std::vector<double> b = GrownBounds(scene, kStartMargin);
+  const double spacing = spacingInH * scene.h;
+  const int nx = static_cast<int>(std::lround((b[1] - b[0]) / spacing)) + 1;
+  const int ny = static_cast<int>(std::lround((b[3] - b[2]) / spacing)) + 1;
+  vtkNew<vtkPointSetSurfaceFieldSampler> sampler;
+  sampler->SetSurface(MakeSurface(scene, variant));
+  sampler->SetSourceData(scene.cloud);
+  sampler->GenerateSamplingGridOn();
+  sampler->SetSampleDimensions(nx, ny, 1);
+  sampler->SetSamplingMargin(kStartMargin);
+  sampler->SetOrientationModeToPropagate();
+  sampler->Update();
+  auto field = vtkSmartPointer<vtkImageData>::New();
+  field->DeepCopy(vtkImageData::SafeDownCast(sampler->GetOutput()));
+  if (field->GetNumberOfPoints() != static_cast<vtkIdType>(nx) * ny)
+  {
+    throw std::runtime_error("the field sampler failed on scene " + scene.name);
+  }
+
+  vtkDataArray* energy = field->GetPointData()->GetArray("Energy");
+  double floor = std::numeric_limits<double>::infinity();
+  for (vtkIdType i = 0; i < energy->GetNumberOfTuples(); ++i)
+  {
+    const double e = energy->GetTuple1(i);
+    if (e > 0.0)
+    {
+      floor = std::min(floor, e);
+    }
+  }
+  if (!std::isfinite(floor))
+  {
+    floor = 1e-300;
+  }
+  vtkNew<vtkDoubleArray> logEnergy;
+  logEnergy->SetName("LogEnergy");
+  logEnergy->SetNumberOfTuples(energy->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < energy->GetNumberOfTuples(); ++i)
+  {
+    logEnergy->SetValue(i, std::log10(std::max(energy->GetTuple1(i), floor)));
+  }
+  field->GetPointData()->AddArray(logEnergy);
+  Label(field, VariantTitle(variant), scene.h);
+  return field;
+}
+
+/// Streamlines of the sampled n, seeded on a lattice of spacing @p seedSpacingInH, both ways.
+vtkSmartPointer<vtkPolyData> Streamlines(vtkImageData* field, const Scene& scene, double seedSpacingInH,
+  double lengthInH)
+{
+  double bounds[6];
+  field->GetBounds(bounds);
+  const double step = seedSpacingInH * scene.h;
+  std::vector<pss::Vec3> seeds;
+  for (double y = bounds[2] + 0.5 * step; y < bounds[3]; y += step)
+  {
+    for (double x = bounds[0] + 0.5 * step; x < bounds[1]; x += step)
+    {
+      seeds.emplace_back(x, y, 0.0);
+    }
+  }
+  vtkNew<vtkStreamTracer> tracer;
+  tracer->SetInputData(field);
+  tracer->SetSourceData(MakePointCloud(seeds));
+  tracer->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Normal");
+  tracer->SetIntegratorTypeToRungeKutta4();
+  tracer->SetIntegrationStepUnit(vtkStreamTracer::CELL_LENGTH_UNIT);
+  tracer->SetInitialIntegrationStep(0.25);
+  tracer->SetMaximumPropagation(lengthInH * scene.h);
+  tracer->SetMaximumNumberOfSteps(5000);
+  tracer->SetIntegrationDirectionToBoth();
+  tracer->SetComputeVorticity(false);
+  tracer->Update();
+  auto lines = vtkSmartPointer<vtkPolyData>::New();
+  lines->DeepCopy(tracer->GetOutput());
+  return lines;
+}
+
+/// Iso-contours of @p array at @p values (vtkContourFilter; the contour value is kept as scalars).
+vtkSmartPointer<vtkPolyData> Contours(vtkImageData* field, const char* array, const std::vector<double>& values)
+{
+  vtkNew<vtkContourFilter> contour;
+  contour->SetInputData(field);
+  contour->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, array);
+  contour->SetNumberOfContours(static_cast<int>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    contour->SetValue(static_cast<int>(i), values[i]);
+  }
+  contour->ComputeScalarsOn();
+  contour->Update();
+  auto lines = vtkSmartPointer<vtkPolyData>::New();
+  lines->DeepCopy(contour->GetOutput());
+  return lines;
+}
+
+/// @p count iso-values of `LogEnergy` evenly spaced between its 2nd and 98th percentiles.
+vtkSmartPointer<vtkPolyData> EnergyContours(vtkImageData* field, int count)
+{
+  vtkDataArray* a = field->GetPointData()->GetArray("LogEnergy");
+  std::vector<double> v(static_cast<std::size_t>(a->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    v[static_cast<std::size_t>(i)] = a->GetTuple1(i);
+  }
+  const double lo = Percentile(v, 0.02);
+  const double hi = Percentile(v, 0.98);
+  std::vector<double> values;
+  for (int k = 0; k < count; ++k)
+  {
+    values.push_back(lo + (hi - lo) * (k + 0.5) / count);
+  }
+  return Contours(field, "LogEnergy", values);
+}
+
+/**
+ * Near-singular points of n: grid samples whose `Stability` is a strict minimum of its 3 x 3
+ * neighbourhood and below @p threshold (n is undefined where the stability is 0).
+ */
+vtkSmartPointer<vtkPolyData> NearSingularPoints(vtkImageData* field, double threshold)
+{
+  int dims[3];
+  field->GetDimensions(dims);
+  vtkDataArray* stability = field->GetPointData()->GetArray("Stability");
+  auto at = [&](int i, int j) { return stability->GetTuple1(static_cast<vtkIdType>(j) * dims[0] + i); };
+  std::vector<pss::Vec3> points;
+  std::vector<double> values;
+  for (int j = 1; j + 1 < dims[1]; ++j)
+  {
+    for (int i = 1; i + 1 < dims[0]; ++i)
+    {
+      const double s = at(i, j);
+      if (!(s < threshold))
+      {
+        continue;
+      }
+      bool minimum = true;
+      for (int dj = -1; dj <= 1 && minimum; ++dj)
+      {
+        for (int di = -1; di <= 1; ++di)
+        {
+          if ((di != 0 || dj != 0) && at(i + di, j + dj) <= s)
+          {
+            minimum = false;
+            break;
+          }
+        }
+      }
+      if (minimum)
+      {
+        double p[3];
+        field->GetPoint(static_cast<vtkIdType>(j) * dims[0] + i, p);
+        points.emplace_back(p[0], p[1], p[2]);
+        values.push_back(s);
+      }
+    }
+  }
+  vtkSmartPointer<vtkPolyData> out = MakePointCloud(points);
+  vtkNew<vtkDoubleArray> s;
+  s->SetName("Stability");
+  for (double v : values)
+  {
+    s->InsertNextValue(v);
+  }
+  out->GetPointData()->AddArray(s);
+  return out;
+}
+
+/// Figure 7's claims about delta, checked on the sampled grid (distances by vtkStaticPointLocator).
+struct DeltaStats
+{
+  vtkIdType samples = 0;
+  vtkIdType aboveSquaredDistance = 0; ///< samples with delta >= d^2 (d: distance to the nearest point)
+  double farRatioMin = std::numeric_limits<double>::infinity();  ///< delta / d^2 where d >= 2.5 h
+  double farRatioMax = 0.0;
+  vtkIdType minima = 0;              ///< strict local minima of delta over the 3 x 3 neighbours
+  double minimaMaxDistance = 0.0;    ///< the largest d of those minima, in h
+};
+
+DeltaStats MeasureDelta(vtkImageData* field, const Scene& scene)
+{
+  vtkNew<vtkStaticPointLocator> locator;
+  locator->SetDataSet(scene.cloud);
+  locator->BuildLocator();
+  vtkDataArray* delta = field->GetPointData()->GetArray("Delta");
+  int dims[3];
+  field->GetDimensions(dims);
+  DeltaStats st;
+  st.samples = field->GetNumberOfPoints();
+  std::vector<double> d2(static_cast<std::size_t>(st.samples));
+  for (vtkIdType i = 0; i < st.samples; ++i)
+  {
+    double x[3];
+    field->GetPoint(i, x);
+    double q[3];
+    scene.cloud->GetPoint(locator->FindClosestPoint(x), q);
+    d2[static_cast<std::size_t>(i)] = vtkMath::Distance2BetweenPoints(x, q);
+    const double v = delta->GetTuple1(i);
+    // delta is a weighted mean of squared distances: never below the smallest one (to rounding).
+    st.aboveSquaredDistance += v >= d2[static_cast<std::size_t>(i)] * (1.0 - 1e-12) ? 1 : 0;
+    if (d2[static_cast<std::size_t>(i)] >= std::pow(2.5 * scene.h, 2))
+    {
+      st.farRatioMin = std::min(st.farRatioMin, v / d2[static_cast<std::size_t>(i)]);
+      st.farRatioMax = std::max(st.farRatioMax, v / d2[static_cast<std::size_t>(i)]);
+    }
+  }
+  for (int j = 1; j + 1 < dims[1]; ++j)
+  {
+    for (int i = 1; i + 1 < dims[0]; ++i)
+    {
+      const vtkIdType id = static_cast<vtkIdType>(j) * dims[0] + i;
+      const double v = delta->GetTuple1(id);
+      bool minimum = true;
+      for (int dj = -1; dj <= 1 && minimum; ++dj)
+      {
+        for (int di = -1; di <= 1; ++di)
+        {
+          if ((di || dj) && delta->GetTuple1(id + static_cast<vtkIdType>(dj) * dims[0] + di) <= v)
+          {
+            minimum = false;
+            break;
+          }
+        }
+      }
+      if (minimum)
+      {
+        ++st.minima;
+        st.minimaMaxDistance = std::max(st.minimaMaxDistance, std::sqrt(d2[static_cast<std::size_t>(id)]) / scene.h);
+      }
+    }
+  }
+  return st;
+}
+
+/// The converged end points of @p projection whose `ExtremumType` is @p type (1 min, 2 max).
+vtkSmartPointer<vtkPolyData> Extrema(vtkPolyData* projection, int type)
+{
+  vtkDataArray* converged = projection->GetPointData()->GetArray("Converged");
+  vtkDataArray* extremum = projection->GetPointData()->GetArray("ExtremumType");
+  std::vector<pss::Vec3> points;
+  for (vtkIdType i = 0; i < projection->GetNumberOfPoints(); ++i)
+  {
+    if (converged->GetTuple1(i) != 0.0 && static_cast<int>(extremum->GetTuple1(i)) == type)
+    {
+      double p[3];
+      projection->GetPoint(i, p);
+      points.emplace_back(p[0], p[1], p[2]);
+    }
+  }
+  return MakePointCloud(points);
+}
+
+struct Glyphs
+{
+  vtkSmartPointer<vtkPolyData> glyphs;
+  vtkSmartPointer<vtkPolyData> fits;
+};
+
+/// Energy plots x + c e(x, a) a (each glyph scaled on its own) and best-fitting lines at @p samples.
+Glyphs EnergyGlyphs(const Scene& scene, int variant, const std::vector<pss::Vec3>& samples, double glyphSizeInH,
+  double segmentLengthInH)
+{
+  vtkNew<vtkPointSetSurfaceEnergyGlyphs> glyphs;
+  glyphs->SetSurface(MakeSurface(scene, variant));
+  glyphs->SetInputData(scene.cloud);
+  glyphs->SetSamplePointsData(MakePointCloud(samples));
+  glyphs->SetResolution(96);
+  glyphs->SetScaleModeToPerGlyph();
+  glyphs->SetGlyphSize(glyphSizeInH);
+  glyphs->SetSegmentLength(segmentLengthInH);
+  glyphs->Update();
+  Glyphs out;
+  out.glyphs = vtkSmartPointer<vtkPolyData>::New();
+  out.glyphs->DeepCopy(glyphs->GetOutput(0));
+  out.fits = vtkSmartPointer<vtkPolyData>::New();
+  out.fits->DeepCopy(glyphs->GetOutput(1));
+  Label(out.glyphs, VariantTitle(variant), scene.h);
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The table and the checks
+
+struct Row
+{
+  ProjectionStats stats;
+  std::string scene;      // scene label in the table
+  std::string starts;     // what the start points were
+  double h = 0.0;
+  double flip = std::numeric_limits<double>::quiet_NaN();      // line scene: flip height / h
+  double halfWidth = std::numeric_limits<double>::quiet_NaN(); // line scene: domain half-width / h
+  bool halfWidthBounded = true;
+};
+
+struct Check
+{
+  std::string name;
+  std::string claim;
+  double value = 0.0;
+  std::string bound;
+  bool pass = false;
+};
+
+std::string Fixed(double v, int digits)
+{
+  if (std::isnan(v))
+  {
+    return "-";
+  }
+  if (std::isinf(v))
+  {
+    return "none";
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+std::string JsonNumber(double v)
+{
+  if (!std::isfinite(v))
+  {
+    return "null";
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string JsonString(const std::string& s)
+{
+  std::string out = "\"";
+  for (char c : s)
+  {
+    if (c == '"' || c == '\\')
+    {
+      out += '\\';
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+void PrintAndWriteTable(const std::vector<Row>& rows)
+{
+  std::printf("\n%-30s %-11s %-24s %6s %9s %9s %8s %10s %12s %8s\n", "scene", "variant", "start points", "starts",
+    "converged", "on curve", "spurious", "flip [h]", "domain [h]", "time [s]");
+  std::ofstream csv(OutDir / "paper_table.csv");
+  csv << "scene,variant,h,start_points,starts,converged,on_curve,on_curve_fraction,spurious,"
+         "flip_height_over_h,domain_half_width_over_h,seconds\n";
+  std::string last;
+  for (const Row& r : rows)
+  {
+    if (!last.empty() && last != r.scene)
+    {
+      std::printf("\n");
+    }
+    last = r.scene;
+    std::string width = Fixed(r.halfWidth, 2);
+    if (!std::isnan(r.halfWidth) && !r.halfWidthBounded)
+    {
+      width = ">= " + width;
+    }
+    std::printf("%-30s %-11s %-24s %6lld %9lld %9.4f %8lld %10s %12s %8.2f\n", r.scene.c_str(),
+      VariantName(r.stats.variant).c_str(), r.starts.c_str(), static_cast<long long>(r.stats.starts),
+      static_cast<long long>(r.stats.converged), r.stats.OnCurveFraction(), static_cast<long long>(r.stats.spurious),
+      Fixed(r.flip, 3).c_str(), width.c_str(), r.stats.seconds);
+    csv << '"' << r.scene << "\"," << VariantName(r.stats.variant) << ',' << r.h << ",\"" << r.starts << "\"," << r.stats.starts << ','
+        << r.stats.converged << ',' << r.stats.onCurve << ',' << Fixed(r.stats.OnCurveFraction(), 4) << ','
+        << r.stats.spurious << ',' << (std::isnan(r.flip) ? "" : std::isinf(r.flip) ? "inf" : Fixed(r.flip, 4)) << ','
+        << (std::isnan(r.halfWidth) ? "" : (r.halfWidthBounded ? "" : ">=") + Fixed(r.halfWidth, 2)) << ','
+        << Fixed(r.stats.seconds, 2) << '\n';
+  }
+  std::printf("\non curve: converged within %.1f h of the true curve; spurious: converged farther than %.0f h from\n"
+              "every input point; flip: height where n first turns from the line's normal to its tangent (or is\n"
+              "undefined), scanned to %.0f h; domain: height below which every start above the line lands on it.\n",
+    kOnCurveDistance, kSpuriousDistance, kNoFlipHeight);
+}
+
+bool PrintAndWriteChecks(const std::vector<Check>& checks)
+{
+  std::printf("\nchecked claims\n");
+  bool all = true;
+  std::ofstream json(OutDir / "paper_checks.json");
+  json << "{\n  \"checks\": [\n";
+  for (std::size_t i = 0; i < checks.size(); ++i)
+  {
+    const Check& c = checks[i];
+    all = all && c.pass;
+    std::printf("  [%s] %-38s %10s   (%s)  %s\n", c.pass ? "PASS" : "FAIL", c.name.c_str(), Fixed(c.value, 4).c_str(),
+      c.bound.c_str(), c.claim.c_str());
+    json << "    {\"name\": " << JsonString(c.name) << ", \"claim\": " << JsonString(c.claim)
+         << ", \"value\": " << JsonNumber(c.value) << ", \"bound\": " << JsonString(c.bound)
+         << ", \"pass\": " << (c.pass ? "true" : "false") << "}" << (i + 1 < checks.size() ? "," : "") << "\n";
+  }
+  json << "  ],\n  \"all_pass\": " << (all ? "true" : "false") << "\n}\n";
+  return all;
+}
+
+// ---------------------------------------------------------------------------------------------
+// What each definition does at the corner
+
+/// Where the converged end points that miss the corner (farther than 0.5 h from it) lie.
+struct CornerBreakdown
+{
+  int variant = 0;
+  vtkIdType pastOpenEnds = 0; ///< beyond the free end of an arm, along its direction
+  vtkIdType behindApex = 0;   ///< on the convex side, below the apex (y < 0)
+  vtkIdType elsewhere = 0;    ///< anywhere else (inside the wedge, beside the arms)
+  std::vector<double> apexProbe; ///< end heights / h of starts on the bisector (NaN: not converged)
+};
+
+const std::vector<double> ApexProbeHeights = { -2.0, -1.0, -0.5, 0.5, 1.0, 2.0 }; // in h, on the bisector
+
+CornerBreakdown BreakDownCorner(const Scene& corner, int variant, vtkPolyData* projected)
+{
+  CornerBreakdown out;
+  out.variant = variant;
+  const double half = 0.5 * corner.shape.cornerAngle * M_PI / 180.0;
+  const double armLength = 0.5 * corner.shape.size;
+  vtkDataArray* outcome = projected->GetPointData()->GetArray("Outcome");
+  for (vtkIdType i = 0; i < projected->GetNumberOfPoints(); ++i)
+  {
+    const int o = static_cast<int>(outcome->GetTuple1(i));
+    if (o != OFF_CURVE && o != SPURIOUS)
+    {
+      continue;
+    }
+    double p[3];
+    projected->GetPoint(i, p);
+    // Arm on p's side: direction (+-sin half, cos half) from the apex at the origin.
+    const double along = std::abs(p[0]) * std::sin(half) + p[1] * std::cos(half);
+    if (along > armLength)
+    {
+      ++out.pastOpenEnds;
+    }
+    else if (p[1] < 0.0)
+    {
+      ++out.behindApex;
+    }
+    else
+    {
+      ++out.elsewhere;
+    }
+  }
+  std::vector<pss::Vec3> probes;
+  for (double t : ApexProbeHeights)
+  {
+    probes.emplace_back(0.0, t * corner.h, 0.0);
+  }
+  const Projection probe = Project(corner, variant, MakePointCloud(probes));
+  vtkDataArray* converged = probe.points->GetPointData()->GetArray("Converged");
+  for (vtkIdType i = 0; i < probe.points->GetNumberOfPoints(); ++i)
+  {
+    out.apexProbe.push_back(
+      converged->GetTuple1(i) != 0.0 ? probe.points->GetPoint(i)[1] / corner.h : std::numeric_limits<double>::quiet_NaN());
+  }
+  return out;
+}
+
+void PrintAndWriteCornerBreakdown(const std::vector<CornerBreakdown>& rows)
+{
+  std::printf("\ncorner (Fig. 6): where the converged end points that miss the corner lie, and where starts on\n"
+              "the bisector end (height / h; the apex is at 0, the wedge opens upwards)\n");
+  std::printf("%-11s %10s %12s %10s   ", "variant", "past ends", "behind apex", "elsewhere");
+  for (double t : ApexProbeHeights)
+  {
+    std::printf(" %6s", ("y0=" + Fixed(t, 1)).c_str());
+  }
+  std::printf("\n");
+  std::ofstream csv(OutDir / "corner_breakdown.csv");
+  csv << "variant,past_open_ends,behind_apex,elsewhere";
+  for (double t : ApexProbeHeights)
+  {
+    csv << ",bisector_end_from_" << Fixed(t, 1) << "h";
+  }
+  csv << '\n';
+  for (const CornerBreakdown& r : rows)
+  {
+    std::printf("%-11s %10lld %12lld %10lld   ", VariantName(r.variant).c_str(), static_cast<long long>(r.pastOpenEnds),
+      static_cast<long long>(r.behindApex), static_cast<long long>(r.elsewhere));
+    csv << VariantName(r.variant) << ',' << r.pastOpenEnds << ',' << r.behindApex << ',' << r.elsewhere;
+    for (double y : r.apexProbe)
+    {
+      std::printf(" %6s", Fixed(y, 2).c_str());
+      csv << ',' << (std::isnan(y) ? "" : Fixed(y, 4));
+    }
+    std::printf("\n");
+    csv << '\n';
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rendering
+
+bool OnPath(const std::string& program)
+{
+  return std::system(("command -v " + program + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+void Render(const Options& opt)
+{
+  if (!OnPath("pvbatch"))
+  {
+    std::printf("\nrendering skipped: pvbatch is not on PATH (Debian: apt-get install paraview). The VTK files\n"
+                "in %s open in ParaView as they are.\n",
+      OutDir.string().c_str());
+    return;
+  }
+  if (!fs::exists(opt.renderer))
+  {
+    std::printf("\nrendering skipped: the render script %s does not exist (--renderer SCRIPT).\n", opt.renderer.c_str());
+    return;
+  }
+  std::string prefix;
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+  {
+    if (!OnPath("xvfb-run"))
+    {
+      std::printf("\nrendering skipped: no display and no xvfb-run (Debian: apt-get install xvfb); ParaView 5.11\n"
+                  "on Debian renders through X only.\n");
+      return;
+    }
+    // -a takes the first free display from -n on; starting at a number drawn from the process id
+    // keeps concurrent xvfb-run calls (tests, other users) from racing for the same display.
+    prefix = "xvfb-run -a -n " + std::to_string(100 + getpid() % 800) + " -s \"-screen 0 1920x1080x24\" ";
+  }
+  const std::string command =
+    prefix + "pvbatch \"" + opt.renderer + "\" \"" + OutDir.string() + "\" > \"" + (OutDir / "render.log").string() + "\" 2>&1";
+  std::printf("\nrendering: %s\n", command.c_str());
+  std::fflush(stdout);
+  const auto t0 = Clock::now();
+  int status = std::system(command.c_str());
+  // xvfb-run -a can pick a display another xvfb-run is just taking: X then fails at once.
+  for (int attempt = 1; status != 0 && !prefix.empty() && attempt < 3; ++attempt)
+  {
+    std::printf("rendering failed (status %d), retrying with a new virtual display\n", status);
+    std::fflush(stdout);
+    status = std::system(command.c_str());
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (status != 0)
+  {
+    std::printf("rendering FAILED (status %d, see %s)\n", status, (OutDir / "render.log").string().c_str());
+    throw std::runtime_error("rendering failed");
+  }
+  std::printf("rendered the PNG images in %.1f s (log: %s)\n", seconds, (OutDir / "render.log").string().c_str());
+}
+
+double Since(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// One line per finished step: its wall time and the time since the start.
+Clock::time_point ProgramStart = Clock::now();
+Clock::time_point LastStep = ProgramStart;
+void Done(const std::string& what)
+{
+  std::printf("  [%6.1f s] %-58s %6.1f s\n", Since(ProgramStart), what.c_str(), Since(LastStep));
+  std::fflush(stdout);
+  LastStep = Clock::now();
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  try
+  {
+    const Options opt = Parse(argc, argv);
+    if (opt.threads > 0)
+    {
+      // The filters switch ParaView's default Sequential backend to STDThread on first use; do
+      // it here so that the thread count applies to the backend that will run.
+      if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
+      {
+        vtkSMPTools::SetBackend("STDThread");
+      }
+      vtkSMPTools::Initialize(opt.threads);
+    }
+    OutDir = fs::path(opt.out);
+    fs::create_directories(OutDir);
+    const auto start = ProgramStart;
+    std::vector<Row> rows;
+    std::vector<Check> checks;
+    const int levin = vtkPointSetSurface::LEVIN_MLS;
+    const int com = vtkPointSetSurface::CENTER_OF_MASS;
+    const int integral = vtkPointSetSurface::INTEGRAL;
+    const std::vector<int> figure6Variants = { levin, vtkPointSetSurface::NORMALIZED_MLS, com, integral };
+
+    // ---- Figure 5: the line scene -------------------------------------------------------------
+    std::printf("computing (each step: time since the start, time of the step)\n");
+    const Scene line = MakeLineScene();
+    Label(line.cloud, "points on a line", line.h);
+    Write(line.cloud, "line_cloud.vtp");
+    const std::vector<double> columns = LineColumns(line);
+    for (int v : AllVariants())
+    {
+      Row r;
+      r.scene = "line (Fig. 5)";
+      r.h = line.h;
+      r.starts = "columns, 0.05..10 h";
+      double lo = std::numeric_limits<double>::infinity();
+      double hi = -lo;
+      for (double x : columns)
+      {
+        const double f = FlipHeight(line, v, x, kNoFlipHeight);
+        lo = std::min(lo, f);
+        hi = std::max(hi, f);
+      }
+      r.flip = lo;
+      const DomainScan scan = LineDomainHalfWidth(line, v);
+      r.stats = scan.stats;
+      r.halfWidth = scan.halfWidth;
+      r.halfWidthBounded = scan.bounded;
+      rows.push_back(r);
+      Done("line: flip height and domain scan, " + VariantName(v));
+      if (v == levin)
+      {
+        const double sqrtHalf = std::sqrt(0.5);
+        checks.push_back({ "line.levin_flip_height_over_h",
+          "n_MLS turns from normal to tangent at h/sqrt(2) = " + Fixed(sqrtHalf, 4) + " h above a line (Fig. 5); "
+            "min over " + std::to_string(columns.size()) + " columns, max " + Fixed(hi, 4),
+          lo, "[" + Fixed(kFlipHeightLow, 2) + ", " + Fixed(kFlipHeightHigh, 2) + "] at every column",
+          lo >= kFlipHeightLow && hi <= kFlipHeightHigh });
+      }
+      if (v == com || v == integral)
+      {
+        checks.push_back({ "line." + VariantName(v) + "_no_flip_up_to_5h",
+          VariantTitle(v) + ": n stays normal to the line up to 5 h (flip height, 'none' = never)", lo,
+          "none up to " + Fixed(kNoFlipHeight, 0) + " h", std::isinf(lo) });
+      }
+    }
+    {
+      // Figure 5: glyphs at heights 0 .. 2 h (x = -0.6 h) and best-fitting lines (x = +0.6 h).
+      std::vector<pss::Vec3> glyphSamples;
+      std::vector<pss::Vec3> fitSamples;
+      for (int k = 0; k <= 8; ++k)
+      {
+        glyphSamples.emplace_back(-0.6 * line.h, 0.25 * k * line.h, 0.0);
+        fitSamples.emplace_back(0.6 * line.h, 0.25 * k * line.h, 0.0);
+      }
+      for (int v : { levin, integral })
+      {
+        const Glyphs g = EnergyGlyphs(line, v, glyphSamples, 0.11, 0.11);
+        const Glyphs f = EnergyGlyphs(line, v, fitSamples, 0.11, 0.11);
+        Write(g.glyphs, "fig05_" + VariantName(v) + "_glyphs.vtp");
+        Write(f.fits, "fig05_" + VariantName(v) + "_fits.vtp");
+      }
+      Done("fig05: energy glyphs and best-fitting lines");
+    }
+
+    // ---- Figures 1 and 2: the noisy curve, h = 5 -----------------------------------------------
+    const Scene noisy = MakeNoisyCurveScene(5.0);
+    Label(noisy.cloud, "noisy curve", noisy.h);
+    Write(noisy.cloud, "noisy_curve_cloud.vtp");
+    double levinFraction = 0.0;
+    double integralFraction = 0.0;
+    for (int v : AllVariants())
+    {
+      const bool figure = v == levin || v == integral;
+      const Projection p = Project(noisy, v, nullptr, false, figure);
+      if (figure)
+      {
+        const std::string stem = v == levin ? "fig01_levin" : "fig02_integral";
+        Label(p.lines, VariantTitle(v), noisy.h);
+        Write(p.lines, stem + "_lines.vtp");
+        Write(p.points, stem + "_projected.vtp");
+      }
+      Row r;
+      r.scene = "noisy curve (Fig. 1, 2)";
+      r.h = noisy.h;
+      r.starts = "the 600 input points";
+      r.stats = p.stats;
+      rows.push_back(r);
+      if (v == levin)
+      {
+        levinFraction = p.stats.OnCurveFraction();
+      }
+      if (v == integral)
+      {
+        integralFraction = p.stats.OnCurveFraction();
+      }
+      Done("noisy curve: project the input points, " + VariantName(v));
+    }
+    checks.push_back({ "noisy_curve.integral_on_curve_fraction",
+      "Fig. 2: almost all input points project to the curve with the integral variant (h = 5)", integralFraction,
+      ">= " + Fixed(kNoisyCurveMinFraction, 2), integralFraction >= kNoisyCurveMinFraction });
+    checks.push_back({ "noisy_curve.levin_on_curve_fraction",
+      "Fig. 1: with Levin's MLS some input points lie outside the domain", levinFraction,
+      "< integral's " + Fixed(integralFraction, 4), levinFraction < integralFraction });
+
+    // Figure 7: delta on the noisy curve (n is not needed: the cheap center-of-mass sampler).
+    {
+      vtkSmartPointer<vtkImageData> field = SampleField(noisy, com, kDeltaGridSpacing);
+      Label(field, "delta", noisy.h);
+      std::vector<double> levels;
+      for (int k = -8; k <= 10; ++k)
+      {
+        levels.push_back(noisy.h * noisy.h * std::pow(2.0, 0.5 * k)); // h^2 / 16 .. 32 h^2, ratio sqrt 2
+      }
+      const DeltaStats ds = MeasureDelta(field, noisy);
+      Write(field, "fig07_delta.vti");
+      Write(Contours(field, "Delta", levels), "fig07_delta_contours.vtp");
+      Done("fig07: delta on a grid, iso-contours");
+      std::printf("             delta >= d^2 (d: distance to the nearest point) at %lld of %lld samples; delta / d^2 in\n"
+                  "             [%.3f, %.3f] where d >= 2.5 h; %lld local minima of delta, all within %.2f h of a point\n",
+        static_cast<long long>(ds.aboveSquaredDistance), static_cast<long long>(ds.samples), ds.farRatioMin,
+        ds.farRatioMax, static_cast<long long>(ds.minima), ds.minimaMaxDistance);
+    }
+
+    // ---- Figure 6: the corner ------------------------------------------------------------------
+    const Scene corner = MakeCornerScene();
+    Label(corner.cloud, "corner", corner.h);
+    Write(corner.cloud, "corner_cloud.vtp");
+    vtkSmartPointer<vtkPolyData> cornerStarts = UniformStarts(corner, kCornerMinStarts, kStartMargin, kCornerStartSeed);
+    Write(cornerStarts, "fig06_starts.vtp");
+    vtkIdType integralSpurious = 0;
+    std::vector<std::pair<int, vtkIdType>> spuriousByVariant;
+    std::vector<CornerBreakdown> cornerBreakdown;
+    for (int v : AllVariants())
+    {
+      const Projection p = Project(corner, v, cornerStarts);
+      Row r;
+      r.scene = "corner (Fig. 6)";
+      r.h = corner.h;
+      r.starts = std::to_string(kCornerMinStarts) + " uniform, box + 3 h";
+      r.stats = p.stats;
+      rows.push_back(r);
+      spuriousByVariant.emplace_back(v, p.stats.spurious);
+      if (v == integral)
+      {
+        integralSpurious = p.stats.spurious;
+      }
+      cornerBreakdown.push_back(BreakDownCorner(corner, v, p.points));
+      if (std::find(figure6Variants.begin(), figure6Variants.end(), v) != figure6Variants.end())
+      {
+        Label(p.points, VariantTitle(v), corner.h);
+        Write(p.points, "fig06_" + VariantName(v) + "_surface_points.vtp");
+      }
+      Done("corner: project " + std::to_string(kCornerMinStarts) + " random starts, " + VariantName(v));
+    }
+    const vtkIdType cornerStartCount = cornerStarts->GetNumberOfPoints();
+    checks.push_back({ "corner.start_points", "uniform random starts in the corner's bounding box grown by 3 h",
+      static_cast<double>(cornerStartCount), ">= " + std::to_string(kCornerMinStarts),
+      cornerStartCount >= kCornerMinStarts });
+    const double integralSpuriousFraction = double(integralSpurious) / double(cornerStartCount);
+    checks.push_back({ "corner.integral_spurious_fraction",
+      "Fig. 6: the integral variant is reasonable even near sharp corners (spurious points / starts)",
+      integralSpuriousFraction, "<= " + Fixed(kCornerMaxSpuriousFraction, 2),
+      integralSpuriousFraction <= kCornerMaxSpuriousFraction });
+    for (const auto& [v, count] : spuriousByVariant)
+    {
+      if (v == levin || v == com)
+      {
+        checks.push_back({ "corner." + VariantName(v) + "_spurious_points",
+          "Fig. 6: " + VariantTitle(v) + " produces more spurious surface points than the integral variant",
+          static_cast<double>(count), "> integral's " + std::to_string(integralSpurious), count > integralSpurious });
+      }
+    }
+    for (int v : figure6Variants)
+    {
+      vtkSmartPointer<vtkImageData> field = SampleField(corner, v, kCornerGridSpacing);
+      Write(field, "fig06_" + VariantName(v) + "_field.vti");
+      vtkSmartPointer<vtkPolyData> lines = Streamlines(field, corner, 1.5, 2.5);
+      Write(lines, "fig06_" + VariantName(v) + "_streamlines.vtp");
+      Write(EnergyContours(field, 10), "fig06_" + VariantName(v) + "_contours.vtp");
+      // Glyphs on a lattice of spacing 2 h over the start box.
+      const std::vector<double> b = GrownBounds(corner, kStartMargin);
+      std::vector<pss::Vec3> samples;
+      for (double y = b[2] + corner.h; y < b[3]; y += 2.0 * corner.h)
+      {
+        for (double x = 0.0; x < b[1]; x += 2.0 * corner.h)
+        {
+          samples.emplace_back(x, y, 0.0);
+          if (x > 0.0)
+          {
+            samples.emplace_back(-x, y, 0.0);
+          }
+        }
+      }
+      const Glyphs g = EnergyGlyphs(corner, v, samples, 0.8, 0.6);
+      Write(g.glyphs, "fig06_" + VariantName(v) + "_glyphs.vtp");
+      Write(g.fits, "fig06_" + VariantName(v) + "_fits.vtp");
+      Done("fig06: field, streamlines, contours, glyphs, " + VariantName(v));
+    }
+
+    // ---- Figures 9 and 10: the noisy curve at h = 10 -------------------------------------------
+    const Scene wide = MakeNoisyCurveScene(10.0);
+    vtkSmartPointer<vtkPolyData> wideStarts = UniformStarts(wide, kWideStarts, kStartMargin, kWideStartSeed);
+    for (int v : AllVariants())
+    {
+      const Projection minima = Project(wide, v, wideStarts);
+      Row r;
+      r.scene = "noisy curve h=10 (Fig. 9, 10)";
+      r.h = wide.h;
+      r.starts = std::to_string(kWideStarts) + " uniform, box + 3 h";
+      r.stats = minima.stats;
+      rows.push_back(r);
+      Done("noisy curve h = 10: project " + std::to_string(kWideStarts) + " random starts, " + VariantName(v));
+      if (v != levin && v != integral)
+      {
+        continue;
+      }
+      const std::string stem = v == levin ? "fig09_levin" : "fig10_integral";
+      const Projection maxima = Project(wide, v, wideStarts, true);
+      vtkSmartPointer<vtkPolyData> minimaPoints = Extrema(minima.points, 1);
+      vtkSmartPointer<vtkPolyData> maximaPoints = Extrema(maxima.points, 2);
+      Write(minimaPoints, stem + "_minima.vtp");
+      Write(maximaPoints, stem + "_maxima.vtp");
+      Done(stem.substr(0, 5) + ": seek maxima from the same starts (" + std::to_string(minimaPoints->GetNumberOfPoints()) +
+        " minima, " + std::to_string(maximaPoints->GetNumberOfPoints()) + " maxima)");
+      vtkSmartPointer<vtkImageData> field = SampleField(wide, v, kWideGridSpacing);
+      Write(field, stem + "_field.vti");
+      Write(Streamlines(field, wide, 1.5, 3.0), stem + "_streamlines.vtp");
+      Write(EnergyContours(field, 12), stem + "_contours.vtp");
+      vtkSmartPointer<vtkPolyData> singular = NearSingularPoints(field, 0.05);
+      Write(singular, stem + "_singular.vtp");
+      Done(stem.substr(0, 5) + ": field, streamlines, contours, " + std::to_string(singular->GetNumberOfPoints()) +
+        " near-singular points");
+    }
+
+    PrintAndWriteTable(rows);
+    PrintAndWriteCornerBreakdown(cornerBreakdown);
+    const bool allPass = PrintAndWriteChecks(checks);
+    const double computeSeconds = Since(start);
+    std::printf("\ncomputed in %.1f s; data in %s\n", computeSeconds, OutDir.string().c_str());
+    if (opt.render)
+    {
+      Render(opt);
+    }
+    std::printf("total wall time %.1f s\n", Since(start));
+    if (opt.check && !allPass)
+    {
+      std::fprintf(stderr, "pss-paper-figures: a checked number missed its bound (see above)\n");
+      return 1;
+    }
+    return 0;
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "pss-paper-figures: error: " << e.what() << '\n';
+    return 1;
+  }
+}

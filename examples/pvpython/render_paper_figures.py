@@ -1,0 +1,446 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""Renders the figures of Amenta & Kil, "The Domain of a Point Set Surface", from the files that
+pss-paper-figures wrote. Reads them with stock ParaView readers only (no plugin needed).
+
+    xvfb-run -a pvbatch render_paper_figures.py OUTDIR      (no display: Debian's ParaView needs X)
+    pvbatch render_paper_figures.py OUTDIR                  (with a display)
+
+Writes OUTDIR/fig01_02_projection_lines.png, fig05_line_glyphs.png, fig06_corner.png,
+fig07_delta.png, fig09_levin_h10.png and fig10_integral_h10.png. Each panel is rendered on its
+own (2D, parallel projection) and the panels are put together with vtkImageAppend, then saved as
+8-bit palette PNGs (small enough for the README). PSS_KEEP_PANELS=1 keeps the single panels in
+OUTDIR/.panels.
+"""
+import csv
+import os
+import shutil
+import struct
+import sys
+import zlib
+
+from paraview.simple import (CreateView, Delete, GetDisplayProperties, GetColorTransferFunction, Line,
+                             Render, SaveScreenshot, Show, Text, Threshold, XMLImageDataReader,
+                             XMLPolyDataReader, ColorBy)
+from vtkmodules.vtkFiltersCore import vtkImageAppend
+from vtkmodules.vtkImagingColor import vtkImageQuantizeRGBToIndex
+from vtkmodules.vtkImagingCore import vtkImageCast
+from vtkmodules.vtkIOImage import vtkPNGReader
+
+OUT = sys.argv[1] if len(sys.argv) > 1 else "paper-figures"
+PANELS = os.path.join(OUT, ".panels")
+
+BLACK = [0.0, 0.0, 0.0]
+GREY = [0.55, 0.55, 0.55]
+LIGHT = [0.78, 0.78, 0.78]
+RED = [0.85, 0.1, 0.1]
+ORANGE = [0.95, 0.55, 0.0]
+BLUE = [0.1, 0.3, 0.95]
+GREEN = [0.0, 0.7, 0.2]
+YELLOW = [1.0, 0.85, 0.0]
+STEEL = [0.35, 0.5, 0.7]
+
+
+# --------------------------------------------------------------------------------------------
+# Data
+
+def path(name):
+    return os.path.join(OUT, name)
+
+
+def poly(name):
+    return XMLPolyDataReader(FileName=[path(name)])
+
+
+def image(name):
+    return XMLImageDataReader(FileName=[path(name)])
+
+
+def table():
+    rows = {}
+    with open(path("paper_table.csv")) as f:
+        for r in csv.DictReader(f):
+            rows[(r["scene"].split(" (")[0], r["variant"])] = r
+    return rows
+
+
+def pct(row):
+    return "%.1f %%" % (100.0 * float(row["on_curve_fraction"]))
+
+
+# --------------------------------------------------------------------------------------------
+# Views and panels
+
+counter = [0]
+bounds_of_view = {}
+
+
+def place_camera(v):
+    """Shows the view's bounds (after every Show, which may have reset the camera)."""
+    bounds = bounds_of_view[id(v)]
+    width, height = v.ViewSize
+    cx = 0.5 * (bounds[0] + bounds[1])
+    cy = 0.5 * (bounds[2] + bounds[3])
+    v.CameraPosition = [cx, cy, 1000.0]
+    v.CameraFocalPoint = [cx, cy, 0.0]
+    v.CameraViewUp = [0.0, 1.0, 0.0]
+    half_h = 0.5 * (bounds[3] - bounds[2])
+    half_w = 0.5 * (bounds[1] - bounds[0])
+    v.CameraParallelScale = max(half_h, half_w * height / float(width)) * 1.02
+
+
+def panel_view(width, height, bounds):
+    """A white 2D view of width x height pixels showing bounds = (xmin, xmax, ymin, ymax)."""
+    v = CreateView("RenderView")
+    v.ViewSize = [width, height]
+    v.OrientationAxesVisibility = 0
+    try:
+        v.UseColorPaletteForBackground = 0
+    except AttributeError:
+        pass
+    v.Background = [1.0, 1.0, 1.0]
+    v.CameraParallelProjection = 1
+    bounds_of_view[id(v)] = bounds
+    return v
+
+
+def points(src, view, color, size, spheres=False, z=1.0):
+    d = Show(src, view)
+    d.ColorArrayName = ["POINTS", ""]
+    d.SetRepresentationType("Points")
+    d.PointSize = size
+    d.RenderPointsAsSpheres = 1 if spheres else 0
+    d.Position = [0.0, 0.0, z]  # in front of images and lines
+    d.AmbientColor = color
+    d.DiffuseColor = color
+    return d
+
+
+def lines(src, view, color, width=1.0, opacity=1.0):
+    d = Show(src, view)
+    d.ColorArrayName = ["POINTS", ""]
+    d.SetRepresentationType("Wireframe")
+    d.LineWidth = width
+    d.AmbientColor = color
+    d.DiffuseColor = color
+    d.Opacity = opacity
+    return d
+
+
+def by_value(src, view, array, association, rng, preset="Grayscale", invert=False, log=False, width=1.0,
+             representation="Wireframe"):
+    d = Show(src, view)
+    d.SetRepresentationType(representation)
+    d.LineWidth = width
+    ColorBy(d, (association, array))
+    lut = GetColorTransferFunction(array + str(counter[0]))
+    counter[0] += 1
+    lut.ApplyPreset(preset, True)
+    if invert:
+        lut.InvertTransferFunction()
+    lut.RescaleTransferFunction(rng[0], rng[1])
+    lut.AutomaticRescaleRangeMode = "Never"
+    if log:
+        lut.UseLogScale = 1
+    d.LookupTable = lut
+    d.SetScalarBarVisibility(view, False)
+    return d
+
+
+def subset(src, array, association, lo, hi):
+    t = Threshold(Input=src)
+    t.Scalars = [association, array]
+    t.LowerThreshold = lo
+    t.UpperThreshold = hi
+    return t
+
+
+def title(view, text, size=15, location="Upper Center"):
+    t = Text(Text=text)
+    d = Show(t, view)
+    d.WindowLocation = location
+    d.Justification = "Left" if "Left" in location else "Center"
+    d.FontSize = size
+    d.Color = BLACK
+    return t
+
+
+def snap(view, name):
+    Render(view)  # the first render of a view resets its camera: place it afterwards
+    place_camera(view)
+    Render(view)
+    os.makedirs(PANELS, exist_ok=True)
+    f = os.path.join(PANELS, name + ".png")
+    SaveScreenshot(f, view, ImageResolution=list(view.ViewSize), TransparentBackground=0)
+    Delete(view)
+    return f
+
+
+def caption_panel(width, height, text, size=14, location="Upper Left Corner"):
+    v = panel_view(width, height, (0, 1, 0, 1))
+    title(v, text, size, location)
+    counter[0] += 1
+    return snap(v, "caption%d" % counter[0])
+
+
+def write_indexed_png(rgb, filename, colors=256):
+    """An 8-bit palette PNG of an RGB vtkImageData: line drawings need few colours, and a palette
+    image is a third of the size of an RGB one (the README shows these files)."""
+    q = vtkImageQuantizeRGBToIndex()
+    q.SetInputData(rgb)
+    q.SetNumberOfColors(colors)
+    q.Update()
+    c = vtkImageCast()
+    c.SetInputConnection(q.GetOutputPort())
+    c.SetOutputScalarTypeToUnsignedChar()
+    c.Update()
+    img = c.GetOutput()
+    w, h, _ = img.GetDimensions()
+    data = bytes(memoryview(img.GetPointData().GetScalars()))
+    lut = q.GetLookupTable()
+    palette = bytearray()
+    for i in range(colors):
+        r, g, b, _ = lut.GetTableValue(i)
+        palette += bytes((int(round(255 * r)), int(round(255 * g)), int(round(255 * b))))
+    raw = bytearray()
+    for row in range(h - 1, -1, -1):  # VTK images start with the bottom row, PNG with the top one
+        raw.append(0)  # filter type: none
+        raw += data[row * w:(row + 1) * w]
+
+    def chunk(tag, payload):
+        return (struct.pack(">I", len(payload)) + tag + payload
+                + struct.pack(">I", zlib.crc32(tag + payload) & 0xffffffff))
+
+    with open(filename, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n")
+        f.write(chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 3, 0, 0, 0)))
+        f.write(chunk(b"PLTE", bytes(palette)))
+        f.write(chunk(b"IDAT", zlib.compress(bytes(raw), 9)))
+        f.write(chunk(b"IEND", b""))
+
+
+def compose(grid, name):
+    """grid: list of rows (top first) of panel PNG files; rows of equal total width."""
+    rows = []
+    for row in grid:
+        a = vtkImageAppend()
+        a.SetAppendAxis(0)
+        for f in row:
+            r = vtkPNGReader()
+            r.SetFileName(f)
+            r.Update()
+            a.AddInputData(r.GetOutput())
+        a.Update()
+        rows.append(a.GetOutput())
+    v = vtkImageAppend()
+    v.SetAppendAxis(1)
+    for img in reversed(rows):  # image y grows upwards
+        v.AddInputData(img)
+    v.Update()
+    write_indexed_png(v.GetOutput(), path(name))
+    print("wrote", path(name), "(%d KB)" % (os.path.getsize(path(name)) // 1024))
+
+
+def array_range(src, name, association="POINTS"):
+    src.UpdatePipeline()
+    info = src.GetDataInformation()
+    info = info.GetPointDataInformation() if association == "POINTS" else info.GetCellDataInformation()
+    return info.GetArrayInformation(name).GetComponentRange(0)
+
+
+def grown(bounds, margin):
+    return (bounds[0] - margin, bounds[1] + margin, bounds[2] - margin, bounds[3] + margin)
+
+
+def count_points(src):
+    src.UpdatePipeline()
+    return src.GetDataInformation().GetNumberOfPoints()
+
+
+def data_bounds(src):
+    src.UpdatePipeline()
+    b = src.GetDataInformation().GetBounds()
+    return (b[0], b[1], b[2], b[3])
+
+
+# --------------------------------------------------------------------------------------------
+# Figures
+
+def figures_1_2(rows):
+    cloud = poly("noisy_curve_cloud.vtp")
+    b = grown(data_bounds(cloud), 6.0)
+    files = []
+    for stem, key, fig in (("fig01_levin", "levin", "Figure 1"), ("fig02_integral", "integral", "Figure 2")):
+        r = rows[("noisy curve", key)]
+        v = panel_view(1400, int(round(1400 * (b[3] - b[2]) / (b[1] - b[0]))), b)
+        ln = poly(stem + "_lines.vtp")
+        lines(subset(ln, "Outcome", "CELLS", 0, 0), v, GREY, 1.0)
+        lines(subset(ln, "Outcome", "CELLS", 1, 3), v, RED, 2.0)
+        points(cloud, v, GREY, 4)
+        projected = poly(stem + "_projected.vtp")
+        points(subset(projected, "Outcome", "POINTS", 0, 0), v, BLACK, 3)
+        points(subset(projected, "Outcome", "POINTS", 1, 3), v, RED, 6)
+        name = "Levin's MLS" if key == "levin" else "integral variant (e_I)"
+        files.append([caption_panel(1400, 30, "%s: %s, h = 5 -- %s of the input points land within 0.5 h of the "
+                                    "true curve" % (fig, name, pct(r)), 16, "Upper Center")])
+        files.append([snap(v, stem)])
+    files.append([caption_panel(1400, 50,
+                                "grey: input point x; black: f(x); grey line: x -> f(x) landing on the curve; "
+                                "red: f(x) farther than 0.5 h from the true curve, or not converged (x outside the "
+                                "domain).\n"
+                                "Noise sigma grows from 0.6 to 3 along the curve (the +-sigma band from 1.2 to 6, "
+                                "slightly wider than h = 5 at the right end), density falls.", 13)])
+    compose(files, "fig01_02_projection_lines.png")
+
+
+def figure_5(checks_flip):
+    cloud = poly("line_cloud.vtp")
+    h = 5.0
+    b = (-1.3 * h, 1.3 * h, -0.3 * h, 2.25 * h)
+    row = []
+    for key, name in (("levin", "Levin's MLS energy"), ("integral", "integral energy e_I")):
+        v = panel_view(560, 560, b)
+        points(cloud, v, BLACK, 5)
+        flip = Line(Point1=[-1.3 * h, h / 2 ** 0.5, 0], Point2=[1.3 * h, h / 2 ** 0.5, 0])
+        lines(flip, v, LIGHT, 1.0)
+        lines(poly("fig05_%s_glyphs.vtp" % key), v, BLUE, 2.0)
+        lines(poly("fig05_%s_fits.vtp" % key), v, RED, 3.0)
+        title(v, name)
+        row.append(snap(v, "fig05_" + key))
+    cap = caption_panel(1120, 70,
+                        "Figure 5: points on a horizontal line (h = 5, spacing 0.1 h); heights 0 .. 2 h. Blue: energy "
+                        "plot x + c e(x, a) a (each scaled on its own; its\nnarrowest direction is n(x)); red: the "
+                        "best-fitting line, normal to n(x). Grey line: h / sqrt 2. Measured flip of n_MLS: %s h; "
+                        "n_I never flips (scanned to 5 h)." % checks_flip, 13)
+    compose([row, [cap]], "fig05_line_glyphs.png")
+
+
+def figure_6(rows):
+    cloud = poly("corner_cloud.vtp")
+    b = data_bounds(image("fig06_levin_field.vti"))
+    w, hgt = 300, 336
+    zoom = (-20.0, 20.0, -17.0, 17.0)  # +-4 h around the apex (h = 5)
+    grid = [[], [], [], [], []]
+    for key, name in (("levin", "Levin's MLS"), ("normalized", "normalized MLS"), ("com", "center of mass"),
+                      ("integral", "integral (e_I)")):
+        r = rows[("corner", key)]
+        grid[0].append(caption_panel(w, 30, name, 17, "Upper Center"))
+        # Row 1: energy glyphs and best-fitting lines.
+        v = panel_view(w, hgt, b)
+        points(cloud, v, BLACK, 3)
+        lines(poly("fig06_%s_glyphs.vtp" % key), v, BLUE, 1.0)
+        lines(poly("fig06_%s_fits.vtp" % key), v, RED, 1.0)
+        grid[1].append(snap(v, "fig06_%s_glyphs" % key))
+        # Row 2: streamlines of n and iso-contours of e(x, n(x)) (lighter grey = lower energy).
+        v = panel_view(w, hgt, b)
+        lines(poly("fig06_%s_streamlines.vtp" % key), v, STEEL, 1.0)
+        c = poly("fig06_%s_contours.vtp" % key)
+        rng = array_range(c, "LogEnergy")
+        by_value(c, v, "LogEnergy", "POINTS", (rng[0] - 0.5 * (rng[1] - rng[0]), rng[1]), "Grayscale", True, False,
+                 1.2)
+        points(cloud, v, BLACK, 3)
+        grid[2].append(snap(v, "fig06_%s_fields" % key))
+        # Row 3: where 2000 uniform random starts end.
+        v = panel_view(w, hgt, b)
+        sp = poly("fig06_%s_surface_points.vtp" % key)
+        points(cloud, v, LIGHT, 6, z=0.0)
+        points(subset(sp, "Outcome", "POINTS", 0, 0), v, BLACK, 3)
+        points(subset(sp, "Outcome", "POINTS", 1, 1), v, ORANGE, 4)
+        points(subset(sp, "Outcome", "POINTS", 2, 2), v, RED, 4)
+        title(v, "on curve %s, spurious %s" % (pct(r), r["spurious"]), 13, "Lower Center")
+        grid[3].append(snap(v, "fig06_%s_points" % key))
+        # Row 4: the same end points around the apex.
+        v = panel_view(w, int(w * (zoom[3] - zoom[2]) / (zoom[1] - zoom[0])), zoom)
+        points(cloud, v, LIGHT, 7, z=0.0)
+        points(subset(sp, "Outcome", "POINTS", 0, 0), v, BLACK, 4)
+        points(subset(sp, "Outcome", "POINTS", 1, 1), v, ORANGE, 5)
+        points(subset(sp, "Outcome", "POINTS", 2, 2), v, RED, 5)
+        grid[4].append(snap(v, "fig06_%s_apex" % key))
+    cap = caption_panel(4 * w, 66,
+                        "Figure 6: a 45-degree corner with open arms (h = 5). Row 1: energy plots (blue) and "
+                        "best-fitting lines (red). Row 2: streamlines of n (blue-grey) and\niso-contours of "
+                        "e(x, n(x)) (lighter = lower). Row 3: end points of 2000 uniform random starts: black within "
+                        "0.5 h of the corner, orange off it but\nwithin 2 h of the cloud, red spurious (farther than "
+                        "2 h from every input point); non-converged starts not drawn. Row 4: row 3 around the apex "
+                        "(+-4 h).", 12)
+    compose(grid + [[cap]], "fig06_corner.png")
+
+
+def figure_7():
+    cloud = poly("noisy_curve_cloud.vtp")
+    field = image("fig07_delta.vti")
+    b = data_bounds(field)
+    v = panel_view(1400, int(round(1400 * (b[3] - b[2]) / (b[1] - b[0]))), b)
+    rng = array_range(field, "Delta")
+    by_value(field, v, "Delta", "POINTS", (max(rng[0], 1e-3), rng[1]), "Grayscale", False, True, 1.0, "Slice")
+    points(cloud, v, RED, 2)
+    top = [caption_panel(1400, 30, "Figure 7 (top): delta(x), the approximate squared distance, as intensity "
+                                   "(log scale; dark = low); red: the input points", 15, "Upper Center"),
+           snap(v, "fig07_image")]
+    zoom = (110.0, 205.0, -40.0, 10.0)
+    v = panel_view(1400, int(round(1400 * (zoom[3] - zoom[2]) / (zoom[1] - zoom[0]))), zoom)
+    c = poly("fig07_delta_contours.vtp")
+    by_value(c, v, "Delta", "POINTS", (0.3, 2500.0), "Grayscale", True, True, 1.5)
+    points(cloud, v, RED, 5)
+    bottom = [caption_panel(1400, 30, "Figure 7 (bottom): iso-contours of delta from h^2/16 to 32 h^2 (ratio "
+                                      "sqrt 2; lighter = lower) near the sparse, noisy end (h = 5)", 15, "Upper Center"),
+              snap(v, "fig07_contours")]
+    compose([[top[0]], [top[1]], [bottom[0]], [bottom[1]]], "fig07_delta.png")
+
+
+def figures_9_10(rows):
+    cloud = poly("noisy_curve_cloud.vtp")
+    for stem, key, fig, name in (("fig09_levin", "levin", "Figure 9", "Levin's MLS"),
+                                 ("fig10_integral", "integral", "Figure 10", "integral variant e_I")):
+        field = image(stem + "_field.vti")
+        b = data_bounds(field)
+        w = 1000
+        hgt = int(round(w * (b[3] - b[2]) / (b[1] - b[0])))
+        panels = []
+        v = panel_view(w, hgt, b)
+        lines(poly(stem + "_streamlines.vtp"), v, STEEL, 1.0)
+        points(cloud, v, BLACK, 2)
+        panels.append([caption_panel(w, 30, "%s (a): streamlines of n, %s, h = 10" % (fig, name), 15,
+                                     "Upper Center")])
+        panels.append([snap(v, stem + "_a")])
+        v = panel_view(w, hgt, b)
+        c = poly(stem + "_contours.vtp")
+        rng = array_range(c, "LogEnergy")
+        by_value(c, v, "LogEnergy", "POINTS", (rng[0] - 0.4 * (rng[1] - rng[0]), rng[1]), "Grayscale", True, False,
+                 1.5)
+        points(cloud, v, BLACK, 2)
+        panels.append([caption_panel(w, 30, "%s (b): iso-contours of e(x, n(x)) (lighter = lower)" % fig, 15,
+                                     "Upper Center")])
+        panels.append([snap(v, stem + "_b")])
+        v = panel_view(w, hgt, b)
+        lines(poly(stem + "_streamlines.vtp"), v, LIGHT, 1.0)
+        points(cloud, v, GREY, 2)
+        maxima = poly(stem + "_maxima.vtp")
+        minima = poly(stem + "_minima.vtp")
+        points(maxima, v, GREEN, 4)
+        points(minima, v, BLUE, 4)
+        points(poly(stem + "_singular.vtp"), v, YELLOW, 8, True)
+        n_min = count_points(minima)
+        n_max = count_points(maxima)
+        panels.append([caption_panel(w, 48, "%s (c): streamlines and the surface points reached from 2000 random "
+                                     "starts: %d minima (blue), %s;\nyellow: near-singular n (local minima of "
+                                     "its stability below 0.05)"
+                                     % (fig, n_min, ("%d maxima (green)" % n_max) if n_max else "no maxima found"),
+                                     14,
+                                     "Upper Center")])
+        panels.append([snap(v, stem + "_c")])
+        compose(panels, stem + "_h10.png")
+
+
+def main():
+    rows = table()
+    flip = rows[("line", "levin")]["flip_height_over_h"]
+    figures_1_2(rows)
+    figure_5(flip)
+    figure_6(rows)
+    figure_7()
+    figures_9_10(rows)
+    if not os.environ.get("PSS_KEEP_PANELS"):
+        shutil.rmtree(PANELS, ignore_errors=True)
+
+
+main()
