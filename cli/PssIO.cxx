@@ -26,7 +26,9 @@
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -404,6 +406,40 @@ long long DecodeCount(const unsigned char* p, const Type& type, bool bigEndian)
   return static_cast<long long>(bits);
 }
 
+// A value of @p type at @p p, as a double (the face indices' range check).
+double DecodeValue(const unsigned char* p, const Type& type, bool bigEndian)
+{
+  unsigned long long bits = 0;
+  for (int b = 0; b < type.size; ++b)
+  {
+    bits |= static_cast<unsigned long long>(p[bigEndian ? type.size - 1 - b : b]) << (8 * b);
+  }
+  if (type.kind == 'f')
+  {
+    if (type.size == 4)
+    {
+      float f = 0.0f;
+      const auto u = static_cast<std::uint32_t>(bits);
+      std::memcpy(&f, &u, sizeof f);
+      return f;
+    }
+    double d = 0.0;
+    std::memcpy(&d, &bits, sizeof d);
+    return d;
+  }
+  if (type.kind == 'i' && (bits >> (8 * type.size - 1)) != 0)
+  {
+    return static_cast<double>(static_cast<long long>(bits) - (1LL << (8 * type.size)));
+  }
+  return static_cast<double>(bits);
+}
+
+// Face lists VTK's reader turns into cells: their items index the vertices.
+bool IsFaceIndexList(const Element& e, const Property& p)
+{
+  return e.name == "face" && p.list && (p.name == "vertex_indices" || p.name == "vertex_index");
+}
+
 // Longest line VTK's ply library reads in one piece (its BIG_STRING buffer is 4096 bytes).
 constexpr std::size_t MaxLine = 4000;
 
@@ -444,6 +480,13 @@ void Validate(const std::string& path)
     if (line.size() > MaxLine)
     {
       fail("header line longer than " + std::to_string(MaxLine) + " characters");
+    }
+    // VTK's header parser stops a line at a NUL and miscounts its words (a crash): header lines
+    // are printable text.
+    if (std::any_of(line.begin(), line.end(),
+          [](char c) { return (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r') || c == 0x7f; }))
+    {
+      fail("control character in the header");
     }
     const std::vector<std::string> w = Words(line);
     if (lineNumber == 1)
@@ -564,6 +607,25 @@ void Validate(const std::string& path)
   {
     throw std::runtime_error(where + "no 'vertex' element with x, y and z properties");
   }
+  // VTK's reader reads the vertex list of every face row whether or not the file declares one:
+  // without it, it reads an uninitialized pointer (a crash).
+  for (const Element& e : elements)
+  {
+    if (e.name == "face" && e.count > 0 &&
+      std::none_of(e.properties.begin(), e.properties.end(), [&](const Property& p) { return IsFaceIndexList(e, p); }))
+    {
+      throw std::runtime_error(where + "element 'face' has no 'vertex_indices' (or 'vertex_index') list");
+    }
+  }
+  // A face index outside the vertices made VTK's reader read outside its points (a crash).
+  const double vertexCount = static_cast<double>(vertex->count);
+  auto checkIndex = [&](double v, const Element& e, long long r) {
+    if (!(v >= 0.0 && v < vertexCount))
+    {
+      throw std::runtime_error(where + "'" + e.name + "' row " + std::to_string(r) + ": vertex index " +
+        std::to_string(v) + " outside [0, " + std::to_string(vertex->count) + ")");
+    }
+  };
 
   // Body: every element row complete, with a number for every value.
   if (format == "ascii")
@@ -596,6 +658,10 @@ void Validate(const std::string& path)
             if (k >= w.size() || !IsNumber(w[k]))
             {
               fail("'" + e.name + "' row " + std::to_string(r) + ": missing or non-numeric value of '" + p.name + "'");
+            }
+            if (IsFaceIndexList(e, p))
+            {
+              checkIndex(std::strtod(w[k].c_str(), nullptr), e, r);
             }
           }
         }
@@ -638,6 +704,13 @@ void Validate(const std::string& path)
         {
           throw std::runtime_error(where + "the file ends inside '" + e.name + "' row " + std::to_string(r) +
             " of " + std::to_string(e.count));
+        }
+        if (IsFaceIndexList(e, p))
+        {
+          for (long long i = 0; i < n; ++i)
+          {
+            checkIndex(DecodeValue(bytes + pos + static_cast<std::size_t>(i * p.item.size), p.item, bigEndian), e, r);
+          }
         }
         pos += need;
       }

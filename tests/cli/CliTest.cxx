@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The pss command-line tool, run as a user runs it: exit codes, messages, files, and the numbers
 // in those files checked against analytic shapes and against the Stanford bunny reference mesh.
+#include "CliTestUtilities.h"
+
 #include "vtkCellLocator.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -24,40 +26,10 @@
 #include <sys/wait.h>
 #include <vector>
 
+using namespace pss_cli_test;
+
 namespace
 {
-
-struct CommandResult
-{
-  int exitCode = -1;
-  std::string output; // stdout and stderr together
-};
-
-// Runs a shell command line, capturing everything it prints.
-CommandResult RunCommand(const std::string& commandLine)
-{
-  CommandResult r;
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((commandLine + " 2>&1").c_str(), "r"), pclose);
-  if (!pipe)
-  {
-    return r;
-  }
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), static_cast<int>(buffer.size()), pipe.get()))
-  {
-    r.output += buffer.data();
-  }
-  const int status = pclose(pipe.release());
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-const std::string Pss = PSS_CLI_PATH;
-
-std::string TempPath(const std::string& name)
-{
-  return std::string(PSS_BINARY_DIR) + "/Testing/cli-" + name;
-}
 
 vtkSmartPointer<vtkPolyData> ReadVTP(const std::string& path)
 {
@@ -93,19 +65,19 @@ double Median(std::vector<double> v)
 // --help works for the tool and every subcommand; a bad command line exits 2 with a message.
 TEST(Cli, HelpAndUsageErrors)
 {
-  EXPECT_EQ(RunCommand(Pss + " --help").exitCode, 0);
+  EXPECT_EQ(RunCommand(Pss() + " --help").exitCode, 0);
   for (const char* sub : { "generate", "project", "classify", "sample", "glyphs" })
   {
-    const CommandResult r = RunCommand(Pss + " " + sub + " --help");
+    const CommandResult r = RunCommand(Pss() + " " + sub + " --help");
     EXPECT_EQ(r.exitCode, 0) << sub;
     EXPECT_NE(r.output.find("--threads"), std::string::npos) << sub << " help lacks --threads";
   }
-  CommandResult r = RunCommand(Pss + " project --no-such-flag x.vtp -o y.vtp");
+  CommandResult r = RunCommand(Pss() + " project --no-such-flag x.vtp -o y.vtp");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.output.find("unknown option"), std::string::npos) << r.output;
-  r = RunCommand(Pss + " frobnicate");
+  r = RunCommand(Pss() + " frobnicate");
   EXPECT_EQ(r.exitCode, 2);
-  r = RunCommand(Pss + " project --h abc x.vtp -o y.vtp");
+  r = RunCommand(Pss() + " project --h abc x.vtp -o y.vtp");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.output.find("expects a number"), std::string::npos) << r.output;
 }
@@ -113,13 +85,13 @@ TEST(Cli, HelpAndUsageErrors)
 // Files that do not exist, empty clouds and h <= 0 fail with exit 1 and say why.
 TEST(Cli, BadInputFailsWithMessage)
 {
-  CommandResult r = RunCommand(Pss + " project /nonexistent/cloud.vtp -o " + TempPath("never.vtp"));
+  CommandResult r = RunCommand(Pss() + " project /nonexistent/cloud.vtp -o " + TempPath("never.vtp"));
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.output.find("cannot open"), std::string::npos) << r.output;
 
   const std::string empty = TempPath("empty.csv");
   std::ofstream(empty) << "x,y,z\n";
-  r = RunCommand(Pss + " project " + empty + " -o " + TempPath("empty-out.vtp"));
+  r = RunCommand(Pss() + " project " + empty + " -o " + TempPath("empty-out.vtp"));
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.output.find("empty"), std::string::npos) << r.output;
 
@@ -132,15 +104,15 @@ TEST(Cli, BadInputFailsWithMessage)
       out << 0.1 * i << ",0,0\n";
     }
   }
-  r = RunCommand(Pss + " project " + cloud + " --h 0 -o " + TempPath("h0.vtp"));
+  r = RunCommand(Pss() + " project " + cloud + " --h 0 -o " + TempPath("h0.vtp"));
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.output.find("h must be"), std::string::npos) << r.output;
-  r = RunCommand(Pss + " project " + cloud + " --h -1 -o " + TempPath("hneg.vtp"));
+  r = RunCommand(Pss() + " project " + cloud + " --h -1 -o " + TempPath("hneg.vtp"));
   EXPECT_EQ(r.exitCode, 1);
 
   const std::string malformed = TempPath("malformed.csv");
   std::ofstream(malformed) << "x,y,z\n1,2,3\n4,five,6\n";
-  r = RunCommand(Pss + " project " + malformed + " -o " + TempPath("malformed.vtp"));
+  r = RunCommand(Pss() + " project " + malformed + " -o " + TempPath("malformed.vtp"));
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.output.find(":3:"), std::string::npos) << "the message should name line 3: " << r.output;
 }
@@ -150,10 +122,10 @@ TEST(Cli, BadInputFailsWithMessage)
 TEST(Cli, GenerateProjectRoundTrip)
 {
   const std::string cloud = TempPath("circle.vtp");
-  CommandResult r = RunCommand(Pss + " generate --scene circle --count 2000 --size 100 -o " + cloud);
+  CommandResult r = RunCommand(Pss() + " generate --scene circle --count 2000 --size 100 -o " + cloud);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const std::string out = TempPath("circle-projected.csv");
-  r = RunCommand(Pss + " project " + cloud + " --variant com --h 1 --threads 2 --verbose -o " + out);
+  r = RunCommand(Pss() + " project " + cloud + " --variant com --h 1 --threads 2 --verbose -o " + out);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const char* stage : { "read", "index", "compute", "write" })
   {
@@ -188,7 +160,7 @@ TEST(Cli, StanfordBunnyScans)
     GTEST_SKIP() << "the shared Stanford bunny data is absent (" << data << ")";
   }
   const std::string out = TempPath("bunny-projected.vtp");
-  const CommandResult r = RunCommand(Pss + " project " + scans + " --variant com --verbose -o " + out);
+  const CommandResult r = RunCommand(Pss() + " project " + scans + " --variant com --verbose -o " + out);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::cout << r.output;
 

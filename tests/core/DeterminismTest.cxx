@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstring>
 
 using namespace pss;
 using namespace pss_test;
@@ -100,4 +101,26 @@ TEST(Determinism, ParallelForVisitsEachIndexOnce)
   }
   EXPECT_EQ(resolveThreadCount(3), 3);
   EXPECT_GE(resolveThreadCount(0), 1);
+}
+
+// Truth: a projection does not depend on what the thread computed before. A start 1e300 from the
+// cloud (its squared distance overflows) used to leave the thread's candidate cache claiming a
+// ball it did not hold, and the next start on that thread then stopped with NoExtremum instead of
+// converging (found by tests/fuzz/FuzzCore.cxx as a 1- vs 2-thread difference).
+TEST(Determinism, OverflowingStartDoesNotChangeTheNextProjection)
+{
+  const std::vector<Vec3> cloud = { Vec3(0.0, 1e300, 0.0), Vec3(-3.9322159026487844, 1e300, 0.0),
+    Vec3(-3.3834143897249822, 1e300, 0.0) };
+  PointIndex index(cloud, 2);
+  auto s = makeSurface(Variant::Delta, index, params(1.0));
+  ProjectionOptions opt;
+  opt.seekMaxima = true;
+  opt.maxIterations = 2;
+  const Vec3 start(-3.3834143897249822, 1e300, 0.0);
+  const ProjectionResult alone = projectAll(*s, { start }, opt, 1).front(); // after nothing else
+  const std::vector<ProjectionResult> after = projectAll(*s, { Vec3(0.0, 0.0, 0.0), start }, opt, 1);
+  EXPECT_EQ(after[0].reason, StopReason::UndefinedDirection); // 1e300 away: n undefined, flagged
+  EXPECT_EQ(after[1].reason, alone.reason);
+  EXPECT_EQ(after[1].iterations, alone.iterations);
+  EXPECT_EQ(std::memcmp(after[1].point.data(), alone.point.data(), 3 * sizeof(double)), 0);
 }

@@ -100,13 +100,15 @@ struct CandidateCache
   std::vector<std::uint32_t> scratch;
   Eigen::ArrayXd px, py, pz;
   Eigen::Index count = 0;
+  bool reusable = false; // the fetched ball is exact, so later queries may rely on it
 
   // True when every point within sqrt(dmin(y)^2 + band) of y is among the candidates:
   // dmin(y) <= centerMinDist + |y - center|, and that ball around y lies in the fetched one.
   // (With @p extra > 0: for every query within extra of y.)
   bool covers(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, double extra = 0.0) const
   {
-    if (indexSerial != index.serial() || h != params.h || band != params.cutoff * params.cutoff * h * h)
+    if (!reusable || indexSerial != index.serial() || h != params.h ||
+      band != params.cutoff * params.cutoff * h * h)
     {
       return false;
     }
@@ -132,9 +134,14 @@ struct CandidateCache
     {
       ids.push_back(f.first);
     }
+    // The ball holds every point within radius only while the squared distances are finite.
+    reusable = !ids.empty() && std::isfinite(radius * radius);
     if (ids.empty())
     {
-      // Only when the radius rounds below the nearest distance (absurd scale ratios).
+      // Only when the radius rounds below the nearest distance (absurd scale ratios, or squared
+      // distances beyond double's range). Such candidates are good for this query alone: reusing
+      // them for the next one made results depend on which query came first (found by
+      // tests/fuzz/FuzzCore.cxx: 1 vs 2 threads differed for a start 1e300 from the cloud).
       ids.push_back(static_cast<std::uint32_t>(index.nearest(y).first));
     }
     // Index order makes every later neighbourhood independent of where this fetch was made.
