@@ -3,5 +3,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/install-deps.sh"
-"$root/scripts/build.sh"
+# PSS_CMAKE_ARGS: extra CMake options, e.g. "-DPSS_TEST_SANITIZERS_FULL=ON -DPSS_TEST_FUZZ=ON".
+# shellcheck disable=SC2086
+"$root/scripts/build.sh" ${PSS_CMAKE_ARGS:-}
 ctest --test-dir "${PSS_BUILD_DIR:-$root/build}" --output-on-failure --parallel "$(nproc)" "$@"
