@@ -450,6 +450,7 @@ void Validate(const std::string& path)
   const std::string where = path + ": not a PLY file VTK can read safely: ";
   std::size_t pos = 0;
   std::size_t lineNumber = 0;
+  bool terminated = false; // the last line read ended with '\n'
   // The next line without its '\n'; false at the end of the data.
   auto nextLine = [&](std::string& line) {
     if (pos >= data.size())
@@ -457,7 +458,8 @@ void Validate(const std::string& path)
       return false;
     }
     std::size_t end = data.find('\n', pos);
-    if (end == std::string::npos)
+    terminated = end != std::string::npos;
+    if (!terminated)
     {
       end = data.size();
     }
@@ -480,6 +482,11 @@ void Validate(const std::string& path)
     if (line.size() > MaxLine)
     {
       fail("header line longer than " + std::to_string(MaxLine) + " characters");
+    }
+    // VTK's reader asserts when a line it reads ends at the end of the file instead of a '\n'.
+    if (!terminated)
+    {
+      fail("the header ends without a line end");
     }
     // VTK's header parser stops a line at a NUL and miscounts its words (a crash): header lines
     // are printable text.
@@ -642,6 +649,10 @@ void Validate(const std::string& path)
         if (line.size() > MaxLine)
         {
           fail("longer than " + std::to_string(MaxLine) + " characters");
+        }
+        if (!terminated)
+        {
+          fail("'" + e.name + "' row " + std::to_string(r) + " ends without a line end (the file is cut off?)");
         }
         const std::vector<std::string> w = Words(line);
         std::size_t k = 0;

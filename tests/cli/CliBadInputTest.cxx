@@ -107,6 +107,8 @@ TEST(CliBadInput, MalformedPly)
                                               154)),
     "control character in the header");
 
+  ExpectRejected(Write("no-final-newline.ply", header + "end_header\n0 0 0\n1 0 0\n0 1 0"), "ends without a line end");
+
   // A well-formed file still reads (binary, and ASCII with CRLF line ends).
   const CommandResult ok = RunCommand(Pss() + " project " + Write("good.ply", BinaryPly(5, 5)) + " --h 1 -o " +
     TempPath("good-ply.csv"));
