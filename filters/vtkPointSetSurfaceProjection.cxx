@@ -124,13 +124,18 @@ int vtkPointSetSurfaceProjection::RequestData(
     return 0;
   }
   std::vector<pss::ProjectionResult> results(startPoints.size());
-  if (!pss_vtk::ParallelFor(
-        this, n, [&](vtkIdType i) { results[i] = this->ProjectPoint(i, startPoints[i].data(), surface, options); }))
+  // Visiting the starts in spatial order lets consecutive projections share cached neighbours.
+  const std::vector<std::uint32_t> order = pss::spatialOrder(startPoints);
+  if (!pss_vtk::ParallelFor(this, n, [&](vtkIdType k) {
+        const vtkIdType i = order[k];
+        results[i] = this->ProjectPoint(i, startPoints[i].data(), surface, options);
+      }))
   {
     return 1; // aborted: leave the outputs empty
   }
 
-  const pss::Orientation orientation = pss::Orientation::awayFromCentroid(*this->Surface->GetIndex());
+  const pss::PointIndex& index = *this->Surface->GetIndex();
+  const pss::Orientation orientation = pss::Orientation::awayFromCentroid(index);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(n);
@@ -152,7 +157,7 @@ int vtkPointSetSurfaceProjection::RequestData(
     const pss::Vec3 nrm = valid ? orientation.apply(r.direction.n, r.point) : pss::Vec3::Zero();
     normal->SetTypedTuple(i, nrm.data());
     energy->SetValue(i, r.energy);
-    const pss::Vec3 d = valid ? pss::Vec3(r.point - r.start) : pss::Vec3::Zero();
+    const pss::Vec3 d = valid ? pss::Vec3(r.point - index.restrict(startPoints[i])) : pss::Vec3::Zero();
     displacement->SetTypedTuple(i, d.data());
     iterations->SetValue(i, r.iterations);
     converged->SetValue(i, r.converged ? 1 : 0);
@@ -199,7 +204,8 @@ int vtkPointSetSurfaceProjection::RequestData(
       {
         continue;
       }
-      const vtkIdType ids[2] = { ends->InsertNextPoint(r.start.data()), ends->InsertNextPoint(r.point.data()) };
+      const pss::Vec3 start = this->Surface->GetIndex()->restrict(startPoints[i]);
+      const vtkIdType ids[2] = { ends->InsertNextPoint(start.data()), ends->InsertNextPoint(r.point.data()) };
       segments->InsertNextCell(2, ids);
       lineConverged->InsertNextValue(r.converged ? 1 : 0);
       lineReason->InsertNextValue(static_cast<int>(r.reason));

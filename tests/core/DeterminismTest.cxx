@@ -61,8 +61,6 @@ TEST(Determinism, ProjectAllIndependentOfThreadCount)
       int converged = 0;
       for (std::size_t i = 0; i < starts.size(); ++i)
       {
-        EXPECT_EQ(one[i].start, starts[i]);
-        EXPECT_EQ(two[i].start, starts[i]);
         EXPECT_LE((one[i].point - two[i].point).norm(), 1e-12 * (1 + one[i].point.norm())) << "start " << i;
         EXPECT_EQ(one[i].iterations, two[i].iterations) << "start " << i;
         EXPECT_EQ(one[i].reason, two[i].reason) << "start " << i;

@@ -116,7 +116,7 @@ bool SameBits(const Vec3& a, const Vec3& b)
 
 bool SameResult(const pss::ProjectionResult& a, const pss::ProjectionResult& b)
 {
-  return SameBits(a.start, b.start) && SameBits(a.point, b.point) && SameBits(a.direction.n, b.direction.n) &&
+  return SameBits(a.point, b.point) && SameBits(a.direction.n, b.direction.n) &&
     SameBits(a.direction.stability, b.direction.stability) && SameBits(a.energy, b.energy) &&
     a.iterations == b.iterations && a.reason == b.reason && a.type == b.type && a.converged == b.converged &&
     SameBits(a.lastStep, b.lastStep);

@@ -6,14 +6,14 @@ namespace pss
 
 Direction CenterOfMass::direction(const Vec3& x) const
 {
-  thread_local Neighbourhood nb;
+  Neighbourhood& nb = threadNeighbourhood();
   gatherNeighbourhood(Index, Params, x, nb);
   return smallestEigenDirection(covarianceAboutCentroid(nb), dimension(), Params.minStability);
 }
 
 Direction CenterOfMass::planeFit(const Vec3& x, Vec3& offset) const
 {
-  thread_local Neighbourhood nb;
+  Neighbourhood& nb = threadNeighbourhood();
   gatherNeighbourhood(Index, Params, x, nb);
   offset = centroidOffset(nb);
   return smallestEigenDirection(weightedScatter(nb, offset) / nb.weightSum, dimension(), Params.minStability);

@@ -272,7 +272,6 @@ void ProjectionOptions::validate() const
 ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const ProjectionOptions& opt)
 {
   ProjectionResult res;
-  res.start = startIn;
   res.point = startIn;
   if (!isFinite(startIn))
   {
@@ -281,11 +280,6 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   }
   const PointIndex& index = s.index();
   Vec3 x = index.restrict(startIn);
-  res.start = x;
-  if (opt.recordPath)
-  {
-    res.path.push_back(x);
-  }
   const double h = s.h();
   const bool plane = opt.procedure == Procedure::Plane;
   // The plane procedure needs n(x) and c(x) - x at every iterate; planeFit gets both from one
@@ -345,10 +339,6 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
     x = index.restrict(x + previousStep);
     res.iterations = it + 1;
     res.lastStep = std::abs(t);
-    if (opt.recordPath)
-    {
-      res.path.push_back(x);
-    }
     dir = fitAt(x);
     if (std::abs(t) < opt.tolerance * h)
     {
@@ -370,17 +360,25 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   return res;
 }
 
+void projectEach(const SurfaceDefinition& s, const std::vector<Vec3>& starts, const ProjectionOptions& opt,
+  int threads, const std::function<void(std::size_t, const ProjectionResult&)>& sink)
+{
+  opt.validate();
+  const std::vector<std::uint32_t> order = spatialOrder(starts);
+  parallelFor(order.size(), threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k)
+    {
+      const std::size_t i = order[k];
+      sink(i, project(s, starts[i], opt));
+    }
+  });
+}
+
 std::vector<ProjectionResult> projectAll(
   const SurfaceDefinition& s, const std::vector<Vec3>& starts, const ProjectionOptions& opt, int threads)
 {
-  opt.validate();
   std::vector<ProjectionResult> results(starts.size());
-  parallelFor(starts.size(), threads, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      results[i] = project(s, starts[i], opt);
-    }
-  });
+  projectEach(s, starts, opt, threads, [&](std::size_t i, const ProjectionResult& r) { results[i] = r; });
   return results;
 }
 

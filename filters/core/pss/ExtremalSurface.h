@@ -87,14 +87,13 @@ struct ProjectionOptions
   int maxIterations = 100;   ///< >= 1
   double tolerance = 1e-6;   ///< convergence when a step is below tolerance * h
   double maxTravel = 1000.0; ///< longest line search, in units of h
-  bool recordPath = false;   ///< keep every iterate in ProjectionResult::path
 
   void validate() const; ///< throws std::invalid_argument
 };
 
+/// What became of one start point (the start itself is the caller's: it is not repeated here).
 struct ProjectionResult
 {
-  Vec3 start = Vec3::Zero();
   Vec3 point = Vec3::Zero();          ///< where the projection stopped (== start on InvalidInput)
   Direction direction;                ///< n at the final point
   Direction startDirection;           ///< n at the start point
@@ -104,16 +103,22 @@ struct ProjectionResult
   double lastStep = 0.0;              ///< length of the last step taken
   StopReason reason = StopReason::MaxIterations;
   ExtremumType type = ExtremumType::None; ///< kind of extremum at the final point
-  std::vector<Vec3> path;             ///< iterates, start first (only with recordPath)
-
-  double displacement() const { return (point - start).norm(); }
 };
 
 /// Projects one start point. Never throws for bad points: reports them in the result.
 ProjectionResult project(const SurfaceDefinition& s, const Vec3& start, const ProjectionOptions& opt);
 
-/// Projects many start points on @p threads threads (0 = all cores). Results do not depend on
-/// the thread count: every point is computed independently and in the same way.
+/**
+ * Projects many start points on @p threads threads (0 = all cores), handing each result to
+ * @p sink(i, result) from the worker that computed it (each i exactly once, in no particular
+ * order), so callers keep only what they need. The points are visited in spatialOrder(), so
+ * consecutive projections share cached neighbours; results do not depend on the order or the
+ * thread count: every point is computed independently and in the same way.
+ */
+void projectEach(const SurfaceDefinition& s, const std::vector<Vec3>& starts, const ProjectionOptions& opt,
+  int threads, const std::function<void(std::size_t, const ProjectionResult&)>& sink);
+
+/// projectEach, keeping every result (result i for start i).
 std::vector<ProjectionResult> projectAll(const SurfaceDefinition& s, const std::vector<Vec3>& starts,
   const ProjectionOptions& opt, int threads = 0);
 

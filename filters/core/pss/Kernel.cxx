@@ -53,39 +53,6 @@ void Neighbourhood::resize(Eigen::Index n)
 namespace
 {
 
-// Ascending order of 32-bit indices: least-significant-digit radix sort (three 11-bit digits)
-// for long lists, where it beats comparison sorting several times over.
-void sortIndices(std::vector<std::uint32_t>& v, std::vector<std::uint32_t>& scratch)
-{
-  if (v.size() < 96)
-  {
-    std::sort(v.begin(), v.end());
-    return;
-  }
-  scratch.resize(v.size());
-  std::uint32_t* from = v.data();
-  std::uint32_t* to = scratch.data();
-  for (int shift = 0; shift < 33; shift += 11)
-  {
-    std::size_t counts[2049] = {};
-    for (std::size_t i = 0; i < v.size(); ++i)
-    {
-      ++counts[((from[i] >> shift) & 2047u) + 1];
-    }
-    for (int b = 0; b < 2048; ++b)
-    {
-      counts[b + 1] += counts[b];
-    }
-    for (std::size_t i = 0; i < v.size(); ++i)
-    {
-      to[counts[(from[i] >> shift) & 2047u]++] = from[i];
-    }
-    std::swap(from, to);
-  }
-  // Three passes leave the result in scratch.
-  v.swap(scratch);
-}
-
 // The candidates of a thread's last k-d tree query: absolute coordinates, ordered by index.
 struct CandidateCache
 {
@@ -95,9 +62,6 @@ struct CandidateCache
   Vec3 center = Vec3::Zero();
   double centerMinDist = 0.0;
   double radius = 0.0;
-  std::vector<std::pair<std::uint32_t, double>> found;
-  std::vector<std::uint32_t> ids;
-  std::vector<std::uint32_t> scratch;
   Eigen::ArrayXd px, py, pz;
   Eigen::Index count = 0;
   bool reusable = false; // the fetched ball is exact, so later queries may rely on it
@@ -124,41 +88,52 @@ struct CandidateCache
     h = params.h;
     band = params.cutoff * params.cutoff * h * h;
     center = y;
-    centerMinDist = std::sqrt(index.nearest(y).second);
+    const auto nearest = index.nearest(y);
+    centerMinDist = std::sqrt(nearest.second);
     const double margin = std::max({ 0.25 * h, 0.05 * centerMinDist, minMargin });
     const double reach = centerMinDist + margin;
     radius = std::sqrt(reach * reach + band) + margin;
-    index.withinSqRadius(y, radius * radius, found);
-    ids.clear();
-    for (const auto& f : found)
-    {
-      ids.push_back(f.first);
-    }
+    const double sqRadius = radius * radius;
+    count = 0;
+    // The leaves come in index order, so the candidates do too: every later neighbourhood is
+    // then independent of where this fetch was made.
+    index.forEachLeafInBall(y, sqRadius, [&](std::uint32_t begin, std::uint32_t end) {
+      reserve(count + (end - begin));
+      for (std::uint32_t i = begin; i < end; ++i)
+      {
+        const Vec3& p = index.point(i);
+        px[count] = p.x();
+        py[count] = p.y();
+        pz[count] = p.z();
+        count += (p - y).squaredNorm() < sqRadius ? 1 : 0;
+      }
+    });
     // The ball holds every point within radius only while the squared distances are finite.
-    reusable = !ids.empty() && std::isfinite(radius * radius);
-    if (ids.empty())
+    reusable = count > 0 && std::isfinite(sqRadius);
+    if (count == 0)
     {
       // Only when the radius rounds below the nearest distance (absurd scale ratios, or squared
       // distances beyond double's range). Such candidates are good for this query alone: reusing
       // them for the next one made results depend on which query came first (found by
       // tests/fuzz/FuzzCore.cxx: 1 vs 2 threads differed for a start 1e300 from the cloud).
-      ids.push_back(static_cast<std::uint32_t>(index.nearest(y).first));
+      reserve(1);
+      const Vec3& p = index.point(nearest.first);
+      px[0] = p.x();
+      py[0] = p.y();
+      pz[0] = p.z();
+      count = 1;
     }
-    // Index order makes every later neighbourhood independent of where this fetch was made.
-    sortIndices(ids, scratch);
-    count = static_cast<Eigen::Index>(ids.size());
-    if (px.size() < count)
+  }
+
+  // Room for @p n candidates, keeping the first count.
+  void reserve(Eigen::Index n)
+  {
+    if (px.size() < n)
     {
-      px.resize(count);
-      py.resize(count);
-      pz.resize(count);
-    }
-    for (Eigen::Index i = 0; i < count; ++i)
-    {
-      const Vec3& p = index.point(ids[static_cast<std::size_t>(i)]);
-      px[i] = p.x();
-      py[i] = p.y();
-      pz[i] = p.z();
+      const Eigen::Index capacity = std::max<Eigen::Index>(n, 2 * px.size());
+      px.conservativeResize(capacity);
+      py.conservativeResize(capacity);
+      pz.conservativeResize(capacity);
     }
   }
 };
@@ -181,7 +156,12 @@ void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& param
   CandidateCache& cache = ThreadCache;
   thread_local Eigen::ArrayXd candidateSq;
 
-  nb.origin = index.restrict(y);
+  const Vec3 origin = index.restrict(y);
+  if (nb.indexSerial == index.serial() && nb.h == params.h && nb.cutoff == params.cutoff && nb.origin == origin)
+  {
+    return;
+  }
+  nb.origin = origin;
   nb.invH2 = 1.0 / (params.h * params.h);
   if (!cache.covers(index, params, nb.origin))
   {
@@ -202,21 +182,28 @@ void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& param
 
   nb.resize(m);
   Eigen::Index n = 0;
+  // Branch-free compaction: every candidate is written, only those inside the band advance n.
   for (Eigen::Index i = 0; i < m; ++i)
   {
-    if (sq[i] < limit || sq[i] == minSq)
-    {
-      nb.dx[n] = cache.px[i] - nb.origin.x();
-      nb.dy[n] = cache.py[i] - nb.origin.y();
-      nb.dz[n] = cache.pz[i] - nb.origin.z();
-      nb.sqDist[n] = sq[i];
-      ++n;
-    }
+    nb.dx[n] = cache.px[i] - nb.origin.x();
+    nb.dy[n] = cache.py[i] - nb.origin.y();
+    nb.dz[n] = cache.pz[i] - nb.origin.z();
+    nb.sqDist[n] = sq[i];
+    n += (sq[i] < limit || sq[i] == minSq) ? 1 : 0;
   }
   nb.count = n;
   nb.minSqDist = minSq;
   nb.weight.head(n) = (-(nb.sqDist.head(n) - minSq) * nb.invH2).exp();
   nb.weightSum = nb.w().sum();
+  nb.indexSerial = index.serial();
+  nb.h = params.h;
+  nb.cutoff = params.cutoff;
+}
+
+Neighbourhood& threadNeighbourhood()
+{
+  thread_local Neighbourhood nb;
+  return nb;
 }
 
 Vec3 centroidOffset(const Neighbourhood& nb)

@@ -63,6 +63,11 @@ struct Neighbourhood
   Eigen::ArrayXd dx, dy, dz;   ///< p_i - y, per coordinate
   Eigen::ArrayXd sqDist;       ///< |p_i - y|^2
   Eigen::ArrayXd weight;       ///< exp(-(|p_i - y|^2 - minSqDist) / h^2), in (0, 1]
+  /// What the contents were gathered for (index serial, h, cutoff; 0 = nothing yet), so that a
+  /// second gather of the same query is free.
+  std::uint64_t indexSerial = 0;
+  double h = 0.0;
+  double cutoff = 0.0;
 
   Eigen::Index size() const { return count; }
   auto x() const { return dx.head(count); }
@@ -81,6 +86,7 @@ struct Neighbourhood
 
 /**
  * Fills @p nb with the neighbourhood of @p y (see the file comment). Requires a non-empty index.
+ * Returns at once when @p nb already holds this query (same index, h, cutoff and point).
  *
  * Each thread keeps the candidate points of its last k-d tree query, fetched with a margin
  * (a quarter of h, or a twentieth of the distance to the cloud if larger). A later query
@@ -91,6 +97,13 @@ struct Neighbourhood
  */
 void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y,
   Neighbourhood& nb);
+
+/**
+ * The calling thread's shared Neighbourhood, for evaluations that gather and then only read it
+ * (no nested gather while they use it). Sharing it lets consecutive evaluations at the same point,
+ * such as a projection's last plane fit and the energy at its end point, gather once.
+ */
+Neighbourhood& threadNeighbourhood();
 
 /**
  * Makes the calling thread's candidates (see gatherNeighbourhood) cover every query within

@@ -6,7 +6,7 @@ namespace pss
 
 Direction LevinMLS::direction(const Vec3& x) const
 {
-  thread_local Neighbourhood nb;
+  Neighbourhood& nb = threadNeighbourhood();
   gatherNeighbourhood(Index, Params, x, nb);
   // The shift factor exp(logScale) scales C(x) and cannot move its eigenvectors; normalizing
   // (NormalizedMLS) divides it by a positive number, which cannot either.
@@ -15,7 +15,7 @@ Direction LevinMLS::direction(const Vec3& x) const
 
 Direction LevinMLS::planeFit(const Vec3& x, Vec3& offset) const
 {
-  thread_local Neighbourhood nb;
+  Neighbourhood& nb = threadNeighbourhood();
   gatherNeighbourhood(Index, Params, x, nb);
   offset = centroidOffset(nb);
   return smallestEigenDirection(covarianceAboutQuery(nb), dimension(), Params.minStability);
@@ -23,7 +23,7 @@ Direction LevinMLS::planeFit(const Vec3& x, Vec3& offset) const
 
 LineSample LevinMLS::lineSample(const Vec3& y, const Vec3& a) const
 {
-  thread_local Neighbourhood nb;
+  Neighbourhood& nb = threadNeighbourhood();
   gatherNeighbourhood(Index, Params, y, nb);
   // Eq. 1 along y + t a: with s_i = <a, p_i - y>, d theta_i/dt = theta_i 2 s_i / h^2 and
   // d s_i/dt = -1, so d/dt sum theta_i s_i^2 = sum theta_i (2 s_i^3 / h^2 - 2 s_i), and once more

@@ -6,7 +6,7 @@ namespace pss
 
 LineSample NormalizedMLS::lineSample(const Vec3& y, const Vec3& a) const
 {
-  thread_local Neighbourhood nb;
+  Neighbourhood& nb = threadNeighbourhood();
   gatherNeighbourhood(Index, Params, y, nb);
   // e = N / W with N = sum w_i s_i^2 and W = sum w_i; quotient rule with the derivatives of
   // LevinMLS::lineSample, dW/dt = sum w_i 2 s_i / h^2 and d2W/dt2 = sum w_i (4 s_i^2 / h^4 - 2 / h^2).

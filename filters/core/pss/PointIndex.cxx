@@ -4,9 +4,11 @@
 #include <nanoflann.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <stdexcept>
 #include <variant>
 
@@ -226,6 +228,141 @@ void PointIndex::withinSqRadius(
   nanoflann::SearchParams params;
   params.sorted = false;
   Impl->visit([&](const auto& tree) { tree.radiusSearch(q.data(), sqRadius, out, params); });
+}
+
+namespace
+{
+
+// Left-to-right walk of the nodes whose boxes come closer to q than sqrt(sqRadius). dist[d] is
+// the squared distance from q to the current box along axis d, so their sum bounds the distance
+// to every point below the node (the boxes narrow as the walk descends: see nanoflann's own
+// searchLevel, which walks the nearer child first instead and so yields unsorted indices).
+template <class Node, int D>
+void collectLeaves(const Node* node, const double* q, double sqRadius, double boxSqDist,
+  std::array<double, D>& dist, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out)
+{
+  if (node->child1 == nullptr && node->child2 == nullptr)
+  {
+    out.emplace_back(static_cast<std::uint32_t>(node->node_type.lr.left),
+      static_cast<std::uint32_t>(node->node_type.lr.right));
+    return;
+  }
+  const int axis = node->node_type.sub.divfeat;
+  const double saved = dist[axis];
+  // child1 holds the points with coordinate <= divlow, child2 those >= divhigh.
+  const double below = q[axis] - node->node_type.sub.divlow;
+  const double first = below > 0.0 ? below * below : saved;
+  if (boxSqDist - saved + first < sqRadius)
+  {
+    dist[axis] = first;
+    collectLeaves<Node, D>(node->child1, q, sqRadius, boxSqDist - saved + first, dist, out);
+  }
+  const double above = node->node_type.sub.divhigh - q[axis];
+  const double second = above > 0.0 ? above * above : saved;
+  if (boxSqDist - saved + second < sqRadius)
+  {
+    dist[axis] = second;
+    collectLeaves<Node, D>(node->child2, q, sqRadius, boxSqDist - saved + second, dist, out);
+  }
+  dist[axis] = saved;
+}
+
+} // namespace
+
+namespace
+{
+
+// The 21 low bits of v spread to every third bit (bit k moves to bit 3k).
+std::uint64_t spreadBits(std::uint64_t v)
+{
+  v &= 0x1fffffu;
+  v = (v | v << 32) & 0x1f00000000ffffu;
+  v = (v | v << 16) & 0x1f0000ff0000ffu;
+  v = (v | v << 8) & 0x100f00f00f00f00fu;
+  v = (v | v << 4) & 0x10c30c30c30c30c3u;
+  v = (v | v << 2) & 0x1249249249249249u;
+  return v;
+}
+
+} // namespace
+
+std::vector<std::uint32_t> spatialOrder(const std::vector<Vec3>& points)
+{
+  if (points.size() >= std::size_t(UINT32_MAX))
+  {
+    throw std::invalid_argument("more than 2^32 - 1 points are not supported");
+  }
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (const Vec3& p : points)
+  {
+    if (isFinite(p))
+    {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  // Cells per unit length on each axis (0 on a flat axis); the extent may overflow to infinity
+  // for coordinates near double's limits, which only coarsens the grid to one cell.
+  const double cells = double((1u << 21) - 1);
+  Vec3 scale = Vec3::Zero();
+  for (int d = 0; d < 3; ++d)
+  {
+    const double extent = hi[d] - lo[d];
+    scale[d] = extent > 0.0 && std::isfinite(extent) ? cells / extent : 0.0;
+  }
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    const Vec3& p = points[i];
+    std::uint64_t code = std::numeric_limits<std::uint64_t>::max();
+    if (isFinite(p))
+    {
+      code = 0;
+      for (int d = 0; d < 3; ++d)
+      {
+        const double cell = std::min(cells, std::max(0.0, (p[d] - lo[d]) * scale[d]));
+        code |= spreadBits(static_cast<std::uint64_t>(cell)) << d;
+      }
+    }
+    keyed[i] = { code, static_cast<std::uint32_t>(i) };
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::uint32_t> order(points.size());
+  for (std::size_t i = 0; i < keyed.size(); ++i)
+  {
+    order[i] = keyed[i].second;
+  }
+  return order;
+}
+
+PointIndex::LeafRanges& PointIndex::leavesInBall(const Vec3& x, double sqRadius) const
+{
+  thread_local LeafRanges ranges;
+  ranges.clear();
+  if (Points.empty())
+  {
+    return ranges;
+  }
+  const Vec3 q = restrict(x);
+  Impl->visit([&](const auto& tree) {
+    constexpr int D = static_cast<int>(std::tuple_size<decltype(tree.root_bbox)>::value);
+    std::array<double, D> dist{};
+    double boxSqDist = 0.0;
+    for (int d = 0; d < D; ++d)
+    {
+      const double lo = tree.root_bbox[d].low - q[d];
+      const double hi = q[d] - tree.root_bbox[d].high;
+      const double gap = std::max({ lo, hi, 0.0 });
+      dist[d] = gap * gap;
+      boxSqDist += dist[d];
+    }
+    if (boxSqDist < sqRadius)
+    {
+      collectLeaves<std::remove_pointer_t<decltype(tree.root_node)>, D>(tree.root_node, q.data(), sqRadius, boxSqDist, dist, ranges);
+    }
+  });
+  return ranges;
 }
 
 } // namespace pss

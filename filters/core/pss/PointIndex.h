@@ -63,8 +63,28 @@ public:
   /// All points with squared distance to @p x strictly below @p sqRadius, unsorted.
   void withinSqRadius(const Vec3& x, double sqRadius, std::vector<std::pair<std::uint32_t, double>>& out) const;
 
+  /**
+   * Calls @p visit(begin, end) for ranges of consecutive indices, in ascending order, that
+   * together hold every point with squared distance to @p x strictly below @p sqRadius (and may
+   * hold a few more: the caller filters). The ranges are the tree's leaves whose bounding boxes
+   * reach the ball; since points are stored in leaf order, visiting leaves left to right gives
+   * indices already sorted, which spares the caller a sort.
+   */
+  template <class Visit>
+  void forEachLeafInBall(const Vec3& x, double sqRadius, Visit&& visit) const
+  {
+    LeafRanges& ranges = leavesInBall(x, sqRadius);
+    for (const auto& r : ranges)
+    {
+      visit(r.first, r.second);
+    }
+  }
+
 private:
   struct Tree;
+  using LeafRanges = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+  /// The leaves for forEachLeafInBall, in a per-thread buffer.
+  LeafRanges& leavesInBall(const Vec3& x, double sqRadius) const;
   int Dimension;
   std::vector<Vec3> Points;
   std::vector<std::size_t> OriginalIds;
@@ -75,6 +95,15 @@ private:
   Vec3 BoundsMax = Vec3::Zero();
   std::unique_ptr<Tree> Impl;
 };
+
+/**
+ * A visiting order for @p points that keeps neighbours together: ascending Morton (Z-order) code
+ * of each point's cell in a 2^21 grid over the points' bounding box, ties by position, points
+ * with a NaN or infinite coordinate last. Projections visited in this order reuse each other's
+ * cached neighbours, and memory is read coherently, whatever order the input came in.
+ * Throws std::invalid_argument beyond 2^32 - 1 points.
+ */
+std::vector<std::uint32_t> spatialOrder(const std::vector<Vec3>& points);
 
 /// True when all three coordinates are finite.
 bool isFinite(const Vec3& x);
