@@ -8,7 +8,9 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -48,6 +50,69 @@ std::string BinaryPly(int declared, int written)
     s.append(reinterpret_cast<const char*>(&v), sizeof v);
   }
   return s;
+}
+
+std::string ReadAll(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A 12-point cloud written by `pss generate` (binary XML, inline base64), as text.
+std::string Generated(const std::string& name, const std::string& compression)
+{
+  const std::string path = TempPath(name);
+  const CommandResult r = RunCommand(Pss() + " generate --scene noisy-curve --count 12 --compression " + compression +
+    " -o " + path);
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  return ReadAll(path);
+}
+
+// @p s with the first @p from replaced by @p to (which must be there).
+std::string Replaced(std::string s, const std::string& from, const std::string& to)
+{
+  const auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << "'" << from << "' not in the generated file";
+  return at == std::string::npos ? s : s.replace(at, from.size(), to);
+}
+
+// @p s with the second half of the base64 text of its Points array cut off.
+std::string TruncatedPoints(std::string s)
+{
+  const auto tag = s.find("Name=\"Points\"");
+  const auto begin = s.find_first_not_of(" \n", s.find('>', tag) + 1);
+  const auto end = s.find_first_of("\n<", begin);
+  EXPECT_NE(tag, std::string::npos);
+  return s.erase(begin + (end - begin) / 2, end - begin - (end - begin) / 2);
+}
+
+// A polydata of 8 points on a line in appended raw data (a 4-byte size header, then 8 x 3 floats),
+// its Points array at @p offset.
+std::string AppendedVtp(const std::string& offset)
+{
+  std::string raw;
+  auto put = [&raw](std::uint32_t bits) {
+    for (int b = 0; b < 4; ++b)
+    {
+      raw += static_cast<char>((bits >> (8 * b)) & 0xFF);
+    }
+  };
+  put(8 * 3 * 4);
+  for (int i = 0; i < 8; ++i)
+  {
+    for (const float v : { 0.5f * static_cast<float>(i), 0.0f, 0.0f })
+    {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, &v, sizeof bits);
+      put(bits);
+    }
+  }
+  return "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt32\">\n<PolyData>\n<Piece NumberOfPoints=\"8\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
+         "NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<Points>\n<DataArray type=\"Float32\" Name=\"Points\" "
+         "NumberOfComponents=\"3\" format=\"appended\" offset=\"" +
+    offset + "\"/>\n</Points>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_" + raw +
+    "\n</AppendedData>\n</VTKFile>\n";
 }
 
 } // namespace
@@ -126,7 +191,119 @@ TEST(CliBadInput, MalformedVtp)
   ExpectRejected(Write("garbage.vtp", "this is not XML\n"), "cannot read");
   ExpectRejected(Write("cut.vtp", "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\">\n<PolyData>\n<Piece "
                                   "NumberOfPoints=\"3\""),
-    "empty");
+    "is not closed (the file is cut off?)");
+}
+
+// Binary XML: VTK's readers trusted every count and size header, and allocated gigabytes or read
+// outside their buffers on a corrupted one (Fuzz.cli_input); pss checks them first and names the
+// array or attribute that is wrong.
+TEST(CliBadInput, MalformedBinaryXml)
+{
+  const std::string plain = Generated("plain.vtp", "none");
+  const std::string zlib = Generated("zlib.vtp", "zlib");
+  const std::string grid = Generated("lz4.vtu", "lz4");
+
+  // Truncated base64: the size header promises more bytes than the text holds.
+  ExpectRejected(Write("truncated-plain.vtp", TruncatedPoints(plain)),
+    "<Points> array 'Points': truncated: the size header promises 288 bytes but only");
+  ExpectRejected(Write("truncated-zlib.vtp", TruncatedPoints(zlib)),
+    "<Points> array 'Points': truncated: the compressed blocks add up to");
+  ExpectRejected(Write("truncated-lz4.vtu", TruncatedPoints(grid)), "truncated: the compressed blocks add up to");
+
+  // A size header that disagrees with NumberOfPoints (12 points of 3 Float64 are 288 bytes).
+  ExpectRejected(Write("more-points.vtp", Replaced(plain, "NumberOfPoints=\"12\"", "NumberOfPoints=\"13\"")),
+    "its size header says 288 bytes, expected 312 (NumberOfPoints 13 x 3 x 8-byte Float64)");
+  ExpectRejected(Write("more-points-zlib.vtp", Replaced(zlib, "NumberOfPoints=\"12\"", "NumberOfPoints=\"11\"")),
+    "its size header says 288 bytes, expected 264");
+
+  // Absurd counts.
+  ExpectRejected(
+    Write("huge-count.vtp", Replaced(zlib, "NumberOfPoints=\"12\"", "NumberOfPoints=\"1000000000000000\"")),
+    "NumberOfPoints=\"1000000000000000\" is more than a");
+  ExpectRejected(Write("float-count.vtp", Replaced(zlib, "NumberOfPoints=\"12\"", "NumberOfPoints=\"1e15\"")),
+    "NumberOfPoints=\"1e15\" is not a non-negative integer");
+  ExpectRejected(Write("negative-cells.vtu", Replaced(grid, "NumberOfCells=\"12\"", "NumberOfCells=\"-12\"")),
+    "NumberOfCells=\"-12\" is not a non-negative integer");
+  // 2^29 + 1 compressed blocks in a 3 KB file: VTK allocated 4 GB for their sizes (the first
+  // out-of-memory Fuzz.cli_input found).
+  ExpectRejected(
+    Write("block-count.vtp", Replaced(zlib, ">\n          AQAAAACAAAAgAQAA", ">\n          AQAAIACAAAAgAQAA")),
+    "blocks, more than the rest of the file has room for");
+
+  // Unknown compressor, header type, array type.
+  ExpectRejected(Write("brotli.vtp", Replaced(zlib, "vtkZLibDataCompressor", "vtkBrotliDataCompressor")),
+    "compressor=\"vtkBrotliDataCompressor\">: unknown compressor");
+  ExpectRejected(Write("uint16-header.vtp", Replaced(zlib, "header_type=\"UInt32\"", "header_type=\"UInt16\"")),
+    "header_type=\"UInt16\">: expected UInt32 or UInt64");
+  ExpectRejected(
+    Write("bad-type.vtp", Replaced(plain, "type=\"Float64\" Name=\"Points\"", "type=\"Float99\" Name=\"Points\"")),
+    "unknown type 'Float99'");
+}
+
+// Cells: VTK sizes the connectivity by the last offset and indexes points with its entries.
+TEST(CliBadInput, MalformedXmlCells)
+{
+  auto grid = [](const std::string& connectivity, const std::string& offsets, const std::string& types) {
+    return "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n"
+           "<Piece NumberOfPoints=\"4\" NumberOfCells=\"2\">\n<Points>\n<DataArray type=\"Float32\" "
+           "NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0 1 1 0</DataArray>\n</Points>\n<Cells>\n"
+           "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">" +
+      connectivity + "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">" + offsets +
+      "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">" + types +
+      "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  };
+  ExpectRejected(Write("cell-point.vtu", grid("0 1 2 1 3 7", "3 6", "5 5")), "entry 5 is point 7, outside [0, 4)");
+  ExpectRejected(Write("cell-offsets.vtu", grid("0 1 2 1 3 2", "3 2", "5 5")), "is below the previous one");
+  ExpectRejected(Write("cell-length.vtu", grid("0 1 2 1 3 2", "3 600000", "5 5")), "6 ASCII values, expected 600000");
+  ExpectRejected(Write("cell-type.vtu", grid("0 1 2 1 3 2", "3 6", "5 99")), "cell 1 has the unknown type 99");
+  const std::string cells = Write("cells.vtu", grid("0 1 2 1 3 2", "3 6", "5 5"));
+  const CommandResult ok = RunCommand(Pss() + " project " + cells + " --h 1 -o " + TempPath("cells.csv"));
+  EXPECT_EQ(ok.exitCode, 0) << ok.output;
+}
+
+// Appended data: an offset past the end of the <AppendedData> section; the same file with a
+// correct offset reads.
+TEST(CliBadInput, MalformedAppendedXml)
+{
+  ExpectRejected(Write("offset-past-end.vtp", AppendedVtp("4000")), "offset 4000 is past the end of the appended data");
+  // At offset 16 the size header is the float 0.5 (0x3F000000 bytes).
+  ExpectRejected(Write("offset-inside.vtp", AppendedVtp("16")), "truncated: the size header promises 1056964608 bytes");
+  ExpectRejected(Write("offset-negative.vtp", AppendedVtp("-4")), "offset=\"-4\" is not a non-negative integer");
+  const CommandResult ok = RunCommand(Pss() + " project " + Write("appended.vtp", AppendedVtp("0")) + " --h 1 -o " +
+    TempPath("appended-out.csv"));
+  EXPECT_EQ(ok.exitCode, 0) << ok.output;
+}
+
+// What pss and VTK write still reads: every compression, as .vtp, .vtu, and .vti (a sampled grid
+// read back as the probe of another sample). 2000 points: their coordinates span two compressed
+// blocks.
+TEST(CliBadInput, GeneratedXmlStillReads)
+{
+  for (const char* compression : { "lz4", "zlib", "none" })
+  {
+    for (const char* ext : { ".vtp", ".vtu" })
+    {
+      const std::string cloud = TempPath(std::string("generated-") + compression + ext);
+      const CommandResult generate = RunCommand(Pss() + " generate --scene noisy-curve --count 2000 --compression " +
+        compression + " -o " + cloud);
+      ASSERT_EQ(generate.exitCode, 0) << generate.output;
+      const std::string projected = TempPath(std::string("projected-") + compression + ext);
+      const CommandResult project = RunCommand(Pss() + " project " + cloud + " --compression " + compression + " -o " +
+        projected);
+      EXPECT_EQ(project.exitCode, 0) << cloud << ": " << project.output;
+      // pss's own output reads back too.
+      const CommandResult again = RunCommand(Pss() + " project " + projected + " -o " + TempPath("again.csv"));
+      EXPECT_EQ(again.exitCode, 0) << projected << ": " << again.output;
+    }
+    const std::string cloud = TempPath(std::string("generated-") + compression + ".vtp");
+    const std::string field = TempPath(std::string("field-") + compression + ".vti");
+    const CommandResult sample = RunCommand(Pss() + " sample " + cloud + " --grid 11,11 --compression " + compression +
+      " -o " + field);
+    ASSERT_EQ(sample.exitCode, 0) << sample.output;
+    const CommandResult probe = RunCommand(Pss() + " sample " + cloud + " --probe " + field + " -o " +
+      TempPath("probed.vti"));
+    EXPECT_EQ(probe.exitCode, 0) << field << ": " << probe.output;
+  }
 }
 
 // Missing arrays: the only array pss needs is the points; a table without x and y columns, a VTP

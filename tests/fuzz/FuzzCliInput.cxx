@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * libFuzzer target over the pss tool's input path: the first byte picks a file extension (.csv,
- * .xyz, .txt, .ply, .vtp, .vtu), the rest is written to a file of that name and read with
- * pss_cli::ReadDataSet, exactly as `pss project FILE` reads it. Then, as the tool would, the
- * points read are indexed and a few of them projected with the automatic h.
+ * .xyz, .txt, .ply, .vtp, .vtu, .vti: index 0 to 6, modulo 7), the rest is written to a file of
+ * that name and read with pss_cli::ReadDataSet, exactly as `pss project FILE` reads it. Then, as
+ * the tool would, the points read are indexed and a few of them projected with the automatic h.
  *
  * Contracts checked beyond ASan/UBSan (a broken one aborts, i.e. is a crash for libFuzzer):
  * - ReadDataSet either returns a dataset or throws std::runtime_error (a readable message, exit 1
@@ -127,7 +127,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
   }
   Folder = buffer.data();
   std::atexit([]() {
-    for (const char* ext : { ".csv", ".xyz", ".txt", ".ply", ".vtp", ".vtu", ".roundtrip.csv" })
+    for (const char* ext : { ".csv", ".xyz", ".txt", ".ply", ".vtp", ".vtu", ".vti", ".roundtrip.csv" })
     {
       std::remove((Folder + "/input" + ext).c_str());
     }
@@ -142,7 +142,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     return 0;
   }
-  static const char* const extensions[] = { ".csv", ".xyz", ".txt", ".ply", ".vtp", ".vtu" };
+  // New extensions go at the end: the committed corpus's first bytes keep their meaning.
+  static const char* const extensions[] = { ".csv", ".xyz", ".txt", ".ply", ".vtp", ".vtu", ".vti" };
   const std::string ext = extensions[data[0] % (sizeof(extensions) / sizeof(extensions[0]))];
   const std::string path = Folder + "/input" + ext;
   WriteFile(path, data + 1, size - 1);
