@@ -161,6 +161,7 @@ void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& param
   {
     return;
   }
+  nb.indexSerial = 0; // until the new contents are complete
   nb.origin = origin;
   nb.invH2 = 1.0 / (params.h * params.h);
   if (!cache.covers(index, params, nb.origin))
