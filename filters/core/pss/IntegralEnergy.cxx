@@ -83,68 +83,105 @@ IntegralEnergy::IntegralEnergy(const PointIndex& index, const SurfaceParameters&
 {
 }
 
-double IntegralEnergy::integrate(const Vec3& x, const Vec3& a, const Vec3* slopeDirection, double* slope) const
+IntegralEnergy::Frame IntegralEnergy::frameOf(const Vec3& a) const
+{
+  Frame f;
+  f.a = a;
+  if (dimension() == 2)
+  {
+    f.b1 = Vec3(-a.y(), a.x(), 0.0);
+    f.b2 = Vec3::Zero();
+  }
+  else
+  {
+    planeBasis(a, f.b1, f.b2);
+  }
+  return f;
+}
+
+// The frame turned by the tangent step s (radians, in b1/b2 coordinates): a moves along the great
+// circle towards s1 b1 + s2 b2 and the in-plane axes are carried along it (parallel transport),
+// so a step's coordinates mean the same in the frame it ends in.
+IntegralEnergy::Frame IntegralEnergy::tilted(const Frame& f, const Eigen::Vector2d& s)
+{
+  const double angle = s.norm();
+  if (angle == 0.0)
+  {
+    return f;
+  }
+  const Vec3 toward = (s.x() * f.b1 + s.y() * f.b2) / angle;
+  const Vec3 across = f.a.cross(toward); // the pivot axis: in both planes, unmoved
+  const Vec3 towardTurned = std::cos(angle) * toward - std::sin(angle) * f.a;
+  Frame out;
+  out.a = (std::cos(angle) * f.a + std::sin(angle) * toward).normalized();
+  auto carried = [&](const Vec3& b) { return b.dot(toward) * towardTurned + b.dot(across) * across; };
+  // Gram-Schmidt against rounding drift; the axes keep their signs (the frame may be left-handed:
+  // frameOf's a is unoriented).
+  out.b1 = carried(f.b1);
+  out.b1 = (out.b1 - out.b1.dot(out.a) * out.a).normalized();
+  out.b2 = carried(f.b2);
+  out.b2 = (out.b2 - out.b2.dot(out.a) * out.a - out.b2.dot(out.b1) * out.b1).normalized();
+  return out;
+}
+
+IntegralEnergy::PlaneIntegral IntegralEnergy::integrate(const Vec3& x, const Frame& f, bool derivatives) const
 {
   const double h = Params.h;
   const int p = Params.integrandPower;
   const Vec3 origin = Index.restrict(x);
-  const std::size_t n = Rule.nodes.size();
-  double value = 0.0;
-  double derivative = 0.0;
+  const bool planar = dimension() == 2;
+  PlaneIntegral out;
   Vec3 gradient;
-  // One term of the Gauss-Hermite sum: weight * delta^p at y, plus weight * d(delta^p)/dt.
-  auto accumulate = [&](const Vec3& y, double weight) {
-    const double d = slopeDirection ? Field.deltaAndGradient(y, gradient) : Field.delta(y);
-    value += weight * (p == 2 ? d * d : d);
-    if (slopeDirection)
+  // The node at in-plane coordinates (u, v) (units of h) adds weight * delta^p. Its derivative
+  // along a is s = weight * p delta^(p-1) a . grad delta; tilting a towards b1 by eps moves the
+  // node by -eps h u a (the plane pivots about x), so the tilt gradient adds -s h (u, v).
+  auto accumulate = [&](double u, double v, double weight) {
+    const Vec3 y = origin + h * (u * f.b1 + v * f.b2);
+    const double d = derivatives ? Field.deltaAndGradient(y, gradient) : Field.delta(y);
+    out.value += weight * (p == 2 ? d * d : d);
+    if (derivatives)
     {
-      derivative += weight * (p == 2 ? 2.0 * d : 1.0) * slopeDirection->dot(gradient);
+      const double s = weight * (p == 2 ? 2.0 * d : 1.0) * f.a.dot(gradient);
+      out.slope += s;
+      out.tilt -= (s * h) * Eigen::Vector2d(u, v);
     }
   };
   // Every node lies within h * max|node| (times sqrt(2) in 3D) of x: one candidate fetch serves all.
-  const double spread = h * Rule.nodes.back() * (dimension() == 2 ? 1.0 : std::sqrt(2.0));
+  const double spread = h * Rule.nodes.back() * (planar ? 1.0 : std::sqrt(2.0));
   prefetchNeighbourhoods(Index, Params, origin, spread);
-  double jacobian = h;
-  if (dimension() == 2)
+  const std::size_t n = Rule.nodes.size();
+  for (std::size_t j = 0; j < n; ++j)
   {
-    const Vec3 b(-a.y(), a.x(), 0.0);
-    for (std::size_t j = 0; j < n; ++j)
+    if (planar)
     {
-      accumulate(origin + h * Rule.nodes[j] * b, Rule.weights[j]);
+      accumulate(Rule.nodes[j], 0.0, Rule.weights[j]);
+      continue;
+    }
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      accumulate(Rule.nodes[j], Rule.nodes[k], Rule.weights[j] * Rule.weights[k]);
     }
   }
-  else
-  {
-    Vec3 b1;
-    Vec3 b2;
-    planeBasis(a, b1, b2);
-    for (std::size_t j = 0; j < n; ++j)
-    {
-      for (std::size_t k = 0; k < n; ++k)
-      {
-        accumulate(origin + h * (Rule.nodes[j] * b1 + Rule.nodes[k] * b2), Rule.weights[j] * Rule.weights[k]);
-      }
-    }
-    jacobian = h * h;
-  }
-  if (slope)
-  {
-    *slope = jacobian * derivative;
-  }
-  return jacobian * value;
+  const double jacobian = planar ? h : h * h;
+  out.value *= jacobian;
+  out.slope *= jacobian;
+  out.tilt *= jacobian;
+  return out;
 }
 
 double IntegralEnergy::energy(const Vec3& y, const Vec3& a) const
 {
-  return integrate(y, a, nullptr, nullptr);
+  return integrate(y, frameOf(a), false).value;
 }
 
 LineSample IntegralEnergy::lineSample(const Vec3& y, const Vec3& a) const
 {
   // Moving the plane along its own normal a moves every node by the same t a, so the slope is
   // the quadrature of d(delta^p)/dt = p delta^(p-1) a . grad delta.
+  const PlaneIntegral sums = integrate(y, frameOf(a), true);
   LineSample out;
-  out.value = integrate(y, a, &a, &out.slope);
+  out.value = sums.value;
+  out.slope = sums.slope;
   out.nearestSqDist = Index.nearest(y).second;
   return out;
 }
@@ -160,26 +197,91 @@ double IntegralEnergy::leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n) con
   {
     return energy(x, Vec3(-n.y(), n.x(), 0.0));
   }
+  // Twelve samples of the half circle of directions orthogonal to n (a and -a are the same, so
+  // the samples wrap around), then one more at the vertex of the parabola through the best
+  // sample and its neighbours.
   Vec3 b1;
   Vec3 b2;
   planeBasis(n, b1, b2);
   constexpr int samples = 12;
+  const double step = M_PI / samples;
+  std::array<double, samples> e;
   int best = 0;
-  double bestValue = std::numeric_limits<double>::infinity();
   for (int k = 0; k < samples; ++k)
   {
-    const double e = energy(x, inPlane(b1, b2, M_PI * k / samples));
-    if (e < bestValue)
+    e[k] = energy(x, inPlane(b1, b2, k * step));
+    best = e[k] < e[best] ? k : best;
+  }
+  const double before = e[(best + samples - 1) % samples];
+  const double after = e[(best + 1) % samples];
+  const double curvature = before - 2.0 * e[best] + after;
+  if (!(curvature > 0.0))
+  {
+    return e[best];
+  }
+  const double offset = 0.5 * (before - after) / curvature; // in [-1/2, 1/2] steps
+  return std::min(e[best], energy(x, inPlane(b1, b2, (best + offset) * step)));
+}
+
+Vec3 IntegralEnergy::refineDirection(const Vec3& x, const Vec3& start) const
+{
+  // Newton's method on the sphere. The gradient is analytic (the tilt sums); the Hessian is a
+  // forward difference of it over hessianStep, wide enough that the truncation of the Gaussian
+  // (points entering or leaving the cut-off band change delta by ~exp(-9) relative) does not
+  // dominate it. The step uses |eigenvalues|, so it goes downhill at saddles too, is capped at
+  // maxTurn (beyond that the quadratic model means little), and is halved until e_I decreases.
+  // Where e_I is constant along a ring of directions (n is not unique there, stability ~0) the
+  // steps stop decreasing it and the iteration ends.
+  constexpr double hessianStep = 1e-3;
+  constexpr double maxTurn = 0.2;
+  constexpr double angularTolerance = 1e-8;
+  constexpr int maxIterations = 30;
+  Frame f = frameOf(start);
+  PlaneIntegral at = integrate(x, f, true);
+  for (int it = 0; it < maxIterations && at.tilt.allFinite(); ++it)
+  {
+    const PlaneIntegral along1 = integrate(x, tilted(f, Eigen::Vector2d(hessianStep, 0.0)), true);
+    const PlaneIntegral along2 = integrate(x, tilted(f, Eigen::Vector2d(0.0, hessianStep)), true);
+    Eigen::Matrix2d hessian;
+    hessian.col(0) = (along1.tilt - at.tilt) / hessianStep;
+    hessian.col(1) = (along2.tilt - at.tilt) / hessianStep;
+    const Eigen::Matrix2d symmetric = 0.5 * (hessian + hessian.transpose());
+    if (!symmetric.allFinite())
     {
-      bestValue = e;
-      best = k;
+      break;
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(symmetric);
+    const double largest = eigen.eigenvalues().cwiseAbs().maxCoeff();
+    if (!(largest > 0.0))
+    {
+      break;
+    }
+    const Eigen::Vector2d lambda = eigen.eigenvalues().cwiseAbs().cwiseMax(1e-9 * largest);
+    Eigen::Vector2d step =
+      -(eigen.eigenvectors() * (eigen.eigenvectors().transpose() * at.tilt).cwiseQuotient(lambda));
+    if (step.norm() > maxTurn)
+    {
+      step *= maxTurn / step.norm();
+    }
+    bool moved = false;
+    for (int halving = 0; halving < 10 && step.norm() >= angularTolerance; ++halving, step *= 0.5)
+    {
+      const Frame trialFrame = tilted(f, step);
+      const PlaneIntegral trial = integrate(x, trialFrame, true);
+      if (trial.value < at.value)
+      {
+        f = trialFrame;
+        at = trial;
+        moved = true;
+        break;
+      }
+    }
+    if (!moved || step.norm() < angularTolerance)
+    {
+      break;
     }
   }
-  const double step = M_PI / samples;
-  double refined = bestValue;
-  goldenMinimum([&](double phi) { return energy(x, inPlane(b1, b2, phi)); }, (best - 1) * step,
-    (best + 1) * step, 1e-6, refined);
-  return std::min(refined, bestValue);
+  return f.a;
 }
 
 namespace
@@ -266,35 +368,8 @@ Direction IntegralEnergy::direction3D(const Vec3& x) const
     }
   }
 
-  // Pattern search on the sphere: rotate n by +-sigma towards the two tangent axes, accept any
-  // decrease, halve sigma when none helps. It takes about 40 steps; the budget stops it where the
-  // minima form a ring (e_I equal along a great circle, to a slow drift): there it once crawled
-  // 490,000 steps of 1.5e-6 rad along the ring (half a second for one n, found by
-  // tests/fuzz/FuzzCore.cxx), and n is not unique there anyway (stability ~0).
-  double sigma = 0.2;
-  for (int step = 0; sigma > 1e-7 && step < 1000; ++step)
-  {
-    Vec3 b1;
-    Vec3 b2;
-    planeBasis(n, b1, b2);
-    bool improved = false;
-    for (const Vec3& t : { b1, b2, Vec3(-b1), Vec3(-b2) })
-    {
-      const Vec3 trial = (std::cos(sigma) * n + std::sin(sigma) * t).normalized();
-      const double e = energy(x, trial);
-      if (e < eMin)
-      {
-        eMin = e;
-        n = trial;
-        improved = true;
-        break;
-      }
-    }
-    if (!improved)
-    {
-      sigma *= 0.5;
-    }
-  }
+  n = refineDirection(x, n);
+  eMin = energy(x, n);
   return finishDirection(n, eMin, leastEnergyOrthogonalTo(x, n), Params.minStability);
 }
 

@@ -71,7 +71,10 @@ public:
  *
  * n_I = argmin over unit a of e_I: in 2D a scan of the half circle refined by golden-section
  * search; in 3D the best of a fixed set of candidate directions (13 lattice directions plus the
- * centre-of-mass eigenvectors), refined by a shrinking pattern search on the sphere. Stability is
+ * centre-of-mass eigenvectors), refined by Newton's method on the sphere. Tilting the plane by an
+ * angle towards an in-plane axis moves each node along a in proportion to its coordinate on that
+ * axis, so the tilt gradient is one more sum over the same nodes as the slope (see integrate());
+ * the Hessian is a difference of two such gradients. Stability is
  * (e_perp - e_min) / (e_perp + e_min), e_perp the least energy over directions orthogonal to n_I:
  * for a quadratic form this is exactly the eigenvalue measure the other variants report.
  */
@@ -85,7 +88,26 @@ public:
   double energy(const Vec3& y, const Vec3& a) const override;
 
 private:
-  double integrate(const Vec3& x, const Vec3& a, const Vec3* slopeDirection, double* slope) const;
+  /// The plane through a point with unit normal a and orthonormal in-plane axes b1, b2 (in 2D
+  /// the line with direction b1; b2 is unused).
+  struct Frame
+  {
+    Vec3 a, b1, b2;
+  };
+
+  /// e_I over a frame's plane, with (when asked) its slope along a and its tilt gradient: the
+  /// derivatives of e_I as a turns towards b1 and towards b2 with the plane pivoting about x.
+  struct PlaneIntegral
+  {
+    double value = 0.0;
+    double slope = 0.0;
+    Eigen::Vector2d tilt = Eigen::Vector2d::Zero();
+  };
+
+  Frame frameOf(const Vec3& a) const;
+  static Frame tilted(const Frame& f, const Eigen::Vector2d& step);
+  PlaneIntegral integrate(const Vec3& x, const Frame& f, bool derivatives) const;
+  Vec3 refineDirection(const Vec3& x, const Vec3& start) const;
   double leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n) const;
   Direction direction2D(const Vec3& x) const;
   Direction direction3D(const Vec3& x) const;
