@@ -4,6 +4,12 @@
 // reports as exit -1), and nothing is written.
 #include "CliTestUtilities.h"
 
+#include "vtkNew.h"
+#include "vtkSmartPointer.h"
+#include "vtkXMLGenericDataObjectReader.h"
+#include "vtkXMLPolyDataWriter.h"
+#include "vtkXMLUnstructuredGridWriter.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -59,12 +65,44 @@ std::string ReadAll(const std::string& path)
 }
 
 // A 12-point cloud written by `pss generate` (binary XML, inline base64), as text.
+// A 12-point cloud from pss generate, rewritten by VTK with inline base64 data (pss itself writes
+// appended raw data, which MalformedAppendedXml covers): the text the tests below cut and edit.
 std::string Generated(const std::string& name, const std::string& compression)
 {
-  const std::string path = TempPath(name);
+  const std::string appended = TempPath("appended-" + name);
   const CommandResult r = RunCommand(Pss() + " generate --scene noisy-curve --count 12 --compression " + compression +
-    " -o " + path);
+    " -o " + appended);
   EXPECT_EQ(r.exitCode, 0) << r.output;
+  vtkNew<vtkXMLGenericDataObjectReader> reader;
+  reader->SetFileName(appended.c_str());
+  reader->Update();
+  const bool poly = name.size() > 4 && name.compare(name.size() - 4, 4, ".vtp") == 0;
+  vtkSmartPointer<vtkXMLWriter> writer;
+  if (poly)
+  {
+    writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
+  }
+  else
+  {
+    writer = vtkSmartPointer<vtkXMLUnstructuredGridWriter>::New();
+  }
+  const std::string path = TempPath(name);
+  writer->SetFileName(path.c_str());
+  writer->SetInputDataObject(reader->GetOutputDataObject(0));
+  writer->SetDataModeToBinary();
+  if (compression == "lz4")
+  {
+    writer->SetCompressorTypeToLZ4();
+  }
+  else if (compression == "zlib")
+  {
+    writer->SetCompressorTypeToZLib();
+  }
+  else
+  {
+    writer->SetCompressorTypeToNone();
+  }
+  EXPECT_EQ(writer->Write(), 1) << path;
   return ReadAll(path);
 }
 
