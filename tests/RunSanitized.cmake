@@ -1,10 +1,18 @@
-# Builds a sanitized copy of the project and runs the given test executables in it with a gtest
-# filter. Invoked by ctest (tests/CMakeLists.txt):
-#   cmake -DSANITIZER=address|thread -DSOURCE_DIR=... -DBINARY_DIR=... -DTARGETS=a,b -DFILTER=...
-#         -P RunSanitized.cmake
+# A sanitized copy of the project, in two steps that ctest runs as separate tests
+# (tests/CMakeLists.txt), so the suites of one copy run side by side once it is built:
+#   cmake -DMODE=build -DSANITIZER=address|thread -DSOURCE_DIR=... -DBINARY_DIR=... -DTARGETS=a,b -P RunSanitized.cmake
+#   cmake -DMODE=run   -DSANITIZER=address|thread -DBINARY_DIR=... -DTARGETS=a -DFILTER=... -P RunSanitized.cmake
 # address: AddressSanitizer + UndefinedBehaviorSanitizer (the project's PSS_SANITIZE option);
 # thread: ThreadSanitizer (compiler and linker flags of the whole copy). Any report fails the run.
-foreach(var SOURCE_DIR BINARY_DIR TARGETS FILTER)
+if(NOT DEFINED MODE)
+  set(MODE build)
+endif()
+if(MODE STREQUAL "build")
+  set(required SOURCE_DIR BINARY_DIR TARGETS)
+else()
+  set(required BINARY_DIR TARGETS FILTER)
+endif()
+foreach(var IN LISTS required)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "RunSanitized.cmake needs -D${var}=...")
   endif()
@@ -31,18 +39,21 @@ else()
   message(FATAL_ERROR "RunSanitized.cmake: SANITIZER must be address or thread, not '${SANITIZER}'")
 endif()
 
-execute_process(
-  COMMAND "${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${BINARY_DIR}" -DCMAKE_BUILD_TYPE=RelWithDebInfo ${flags} ${common}
-  RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "configuring the ${SANITIZER}-sanitized build failed")
-endif()
-cmake_host_system_information(RESULT cores QUERY NUMBER_OF_LOGICAL_CORES)
-execute_process(
-  COMMAND "${CMAKE_COMMAND}" --build "${BINARY_DIR}" --parallel ${cores} --target ${TARGETS}
-  RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "building the ${SANITIZER}-sanitized tests failed")
+if(MODE STREQUAL "build")
+  execute_process(
+    COMMAND "${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${BINARY_DIR}" -DCMAKE_BUILD_TYPE=RelWithDebInfo ${flags} ${common}
+    RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "configuring the ${SANITIZER}-sanitized build failed")
+  endif()
+  cmake_host_system_information(RESULT cores QUERY NUMBER_OF_LOGICAL_CORES)
+  execute_process(
+    COMMAND "${CMAKE_COMMAND}" --build "${BINARY_DIR}" --parallel ${cores} --target ${TARGETS}
+    RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "building the ${SANITIZER}-sanitized tests failed")
+  endif()
+  return()
 endif()
 
 foreach(target IN LISTS TARGETS)

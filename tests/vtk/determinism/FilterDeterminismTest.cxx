@@ -9,7 +9,7 @@
  * index order from absolute coordinates, so no sum depends on which thread ran the point, on the
  * chunking, or on what that thread's candidate cache held before (Kernel.h). Reductions (the
  * glyphs' global scale, the sampler's PROPAGATE tree) run after the parallel loop, in index order.
- * The same tests run under ThreadSanitizer (ctest Sanitizers.Thread).
+ * The same tests run under ThreadSanitizer (ctest -R Sanitizers.Thread).
  */
 #include "vtkPointSetSurface.h"
 #include "vtkPointSetSurfaceCloudSource.h"
