@@ -64,7 +64,6 @@ std::string ReadAll(const std::string& path)
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// A 12-point cloud written by `pss generate` (binary XML, inline base64), as text.
 // A 12-point cloud from pss generate, rewritten by VTK with inline base64 data (pss itself writes
 // appended raw data, which MalformedAppendedXml covers): the text the tests below cut and edit.
 std::string Generated(const std::string& name, const std::string& compression)
