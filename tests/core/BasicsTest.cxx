@@ -156,3 +156,48 @@ TEST(Projection, SeekingMaximaNeverReturnsMinimum)
       << "type " << static_cast<int>(r.type) << " at " << r.point.transpose();
   }
 }
+
+// Truth: std::exp. The kernel's vectorized exponential must agree with it to one unit in the
+// last place over the whole range the weights use, and keep its special values (0 -> 1 exactly,
+// which makes the nearest neighbour's weight exactly 1; NaN stays NaN; far below: 0).
+TEST(Kernel, VectorizedExpMatchesStdExp)
+{
+  std::vector<double> x;
+  for (int i = 0; i <= 100000; ++i)
+  {
+    x.push_back(-708.0 * i / 100000.0);   // the whole range, evenly
+    x.push_back(-9.0 * i / 100000.0);     // the range a cutoff of 3 h gives
+    x.push_back(-1e-12 * i);              // near 0, where r is tiny
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  x.insert(x.end(), { 0.0, -0.0, nan, -inf, -708.5, -1e4, -707.999 });
+  std::vector<double> out(x.size(), -1.0);
+  expNonPositive(x.data(), out.data(), static_cast<Eigen::Index>(x.size()));
+  double worstUlps = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+  {
+    if (std::isnan(x[i]))
+    {
+      EXPECT_TRUE(std::isnan(out[i]));
+    }
+    else if (x[i] < -708.0)
+    {
+      EXPECT_EQ(out[i], 0.0) << "x = " << x[i];
+    }
+    else
+    {
+      const double truth = std::exp(x[i]);
+      const double ulp = std::nextafter(truth, inf) - truth;
+      worstUlps = std::max(worstUlps, std::abs(out[i] - truth) / ulp);
+    }
+  }
+  EXPECT_LE(worstUlps, 1.0);
+  EXPECT_EQ(out[x.size() - 7], 1.0);
+  EXPECT_EQ(out[x.size() - 6], 1.0);
+  // Odd lengths take the scalar tail: the same values.
+  std::vector<double> tail(3);
+  expNonPositive(x.data() + 1, tail.data(), 3);
+  EXPECT_EQ(tail[0], out[1]);
+  EXPECT_EQ(tail[2], out[3]);
+}

@@ -4,13 +4,33 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
+#if !defined(__GNUC__)
+#error "the kernel's vector loops use GCC/Clang vector extensions"
+#endif
+
 namespace pss
 {
+
+namespace
+{
+#if defined(__AVX__)
+constexpr int SimdLanes = 4;
+#else
+constexpr int SimdLanes = 2;
+#endif
+} // namespace
 
 void SurfaceParameters::validate() const
 {
@@ -39,9 +59,11 @@ void SurfaceParameters::validate() const
 
 void Neighbourhood::resize(Eigen::Index n)
 {
-  if (dx.size() < n)
+  // Room for a whole vector past the end: the loops below read and write in whole vectors.
+  const Eigen::Index needed = n + SimdLanes;
+  if (dx.size() < needed)
   {
-    const Eigen::Index capacity = std::max<Eigen::Index>(n, 2 * dx.size());
+    const Eigen::Index capacity = std::max<Eigen::Index>(needed, 2 * dx.size());
     for (Eigen::ArrayXd* a : { &dx, &dy, &dz, &sqDist, &weight })
     {
       a->resize(capacity);
@@ -52,6 +74,143 @@ void Neighbourhood::resize(Eigen::Index n)
 
 namespace
 {
+
+// The weighted sums below run over whole vectors of SimdLanes doubles (GCC/Clang vector
+// extensions: AVX where the build has it, SSE2 otherwise). Each keeps one partial sum per lane
+// and adds the lanes in a fixed order at the end, so a result depends only on the neighbours
+// and their order, never on the thread or the call history.
+typedef double VecD __attribute__((vector_size(8 * SimdLanes)));
+typedef std::int64_t VecI __attribute__((vector_size(8 * SimdLanes)));
+
+VecD load(const double* p)
+{
+  VecD v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+void store(double* p, const VecD& v)
+{
+  std::memcpy(p, &v, sizeof v);
+}
+
+VecD splat(double x)
+{
+  return VecD{} + x;
+}
+
+double lanesSum(const VecD& v)
+{
+  double s = 0.0;
+  for (int k = 0; k < SimdLanes; ++k)
+  {
+    s += v[k];
+  }
+  return s;
+}
+
+// exp(x) for x <= 0, SimdLanes at a time: x = k ln2 + r with |r| <= ln2 / 2 (ln2 in two parts,
+// so k ln2 is exact to double precision), exp(r) by its Taylor series to degree 13 (remainder
+// below 1e-17), and 2^k added to the exponent bits. Within one ulp of std::exp on [-708, 0];
+// 0 below -708 (where the true value is subnormal: a neighbour weighing less than 1e-307 of the
+// nearest one); NaN stays NaN.
+inline __attribute__((always_inline)) VecD expNonPositive(const VecD& v)
+{
+  constexpr double log2e = 1.4426950408889634074;
+  constexpr double ln2hi = 6.93147180369123816490e-01;
+  constexpr double ln2lo = 1.90821492927058770002e-10;
+  constexpr double shifter = 6755399441055744.0; // 1.5 * 2^52: adding it rounds to an integer
+  const VecD x = v < -708.0 ? splat(-708.0) : v;
+  const VecD t = x * log2e + shifter; // k in the low mantissa bits
+  const VecD k = t - shifter;
+  const VecD r = (x - k * ln2hi) - k * ln2lo;
+  VecD p = r * (1.0 / 6227020800.0) + 1.0 / 479001600.0;
+  p = p * r + 1.0 / 39916800.0;
+  p = p * r + 1.0 / 3628800.0;
+  p = p * r + 1.0 / 362880.0;
+  p = p * r + 1.0 / 40320.0;
+  p = p * r + 1.0 / 5040.0;
+  p = p * r + 1.0 / 720.0;
+  p = p * r + 1.0 / 120.0;
+  p = p * r + 1.0 / 24.0;
+  p = p * r + 1.0 / 6.0;
+  p = p * r + 0.5;
+  p = p * r + 1.0;
+  p = p * r + 1.0;
+  VecI bits;
+  std::memcpy(&bits, &p, sizeof bits);
+  VecI kBits;
+  std::memcpy(&kBits, &t, sizeof kBits);
+  constexpr std::int64_t shifterBits = 0x4338000000000000LL; // the bits of shifter
+  bits += (kBits - shifterBits) << 52;
+  VecD e;
+  std::memcpy(&e, &bits, sizeof e);
+  e = v < -708.0 ? VecD{} : e;
+  return v != v ? v : e;
+}
+
+// Keeps the candidates with in[i] set, in order: writes their offsets and squared distances
+// from position 0 on and returns how many there are. May write up to SimdLanes entries past the
+// returned count (the arrays have that room).
+Eigen::Index compactCandidates(const double* px, const double* py, const double* pz, const double* sq,
+  Eigen::Index m, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
+{
+  Eigen::Index n = 0;
+  Eigen::Index i = 0;
+#if defined(__AVX2__)
+  // Four candidates at a time: the kept ones are moved to the front of the vector by a permutation
+  // chosen from the 4-bit mask, and the whole vector is stored at n.
+  static const auto permutations = [] {
+    std::array<std::array<std::int32_t, 8>, 16> table{};
+    for (int mask = 0; mask < 16; ++mask)
+    {
+      int slot = 0;
+      for (int lane = 0; lane < 4; ++lane)
+      {
+        if (mask & (1 << lane))
+        {
+          table[mask][2 * slot] = 2 * lane;
+          table[mask][2 * slot + 1] = 2 * lane + 1;
+          ++slot;
+        }
+      }
+    }
+    return table;
+  }();
+  const __m256d ox = _mm256_set1_pd(origin.x());
+  const __m256d oy = _mm256_set1_pd(origin.y());
+  const __m256d oz = _mm256_set1_pd(origin.z());
+  const __m256d lim = _mm256_set1_pd(limit);
+  const __m256d nearest = _mm256_set1_pd(minSq);
+  auto moveDown = [](__m256d v, __m256i perm) {
+    return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), perm));
+  };
+  for (; i + 4 <= m; i += 4)
+  {
+    const __m256d d = _mm256_loadu_pd(sq + i);
+    const __m256d keep =
+      _mm256_or_pd(_mm256_cmp_pd(d, lim, _CMP_LT_OQ), _mm256_cmp_pd(d, nearest, _CMP_EQ_OQ));
+    const int mask = _mm256_movemask_pd(keep);
+    const __m256i perm =
+      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(permutations[static_cast<std::size_t>(mask)].data()));
+    _mm256_storeu_pd(nb.dx.data() + n, moveDown(_mm256_sub_pd(_mm256_loadu_pd(px + i), ox), perm));
+    _mm256_storeu_pd(nb.dy.data() + n, moveDown(_mm256_sub_pd(_mm256_loadu_pd(py + i), oy), perm));
+    _mm256_storeu_pd(nb.dz.data() + n, moveDown(_mm256_sub_pd(_mm256_loadu_pd(pz + i), oz), perm));
+    _mm256_storeu_pd(nb.sqDist.data() + n, moveDown(d, perm));
+    n += __builtin_popcount(static_cast<unsigned>(mask));
+  }
+#endif
+  // Branch-free: every candidate is written, only the kept ones advance n.
+  for (; i < m; ++i)
+  {
+    nb.dx[n] = px[i] - origin.x();
+    nb.dy[n] = py[i] - origin.y();
+    nb.dz[n] = pz[i] - origin.z();
+    nb.sqDist[n] = sq[i];
+    n += static_cast<Eigen::Index>((sq[i] < limit) | (sq[i] == minSq));
+  }
+  return n;
+}
 
 // The candidates of a thread's last k-d tree query: absolute coordinates, ordered by index.
 struct CandidateCache
@@ -179,26 +338,51 @@ void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& param
   sq = (cache.px.head(m) - nb.origin.x()).square() + (cache.py.head(m) - nb.origin.y()).square() +
     (cache.pz.head(m) - nb.origin.z()).square();
   const double minSq = sq.minCoeff();
-  const double limit = minSq + cache.band;
-
   nb.resize(m);
-  Eigen::Index n = 0;
-  // Branch-free compaction: every candidate is written, only those inside the band advance n.
-  for (Eigen::Index i = 0; i < m; ++i)
-  {
-    nb.dx[n] = cache.px[i] - nb.origin.x();
-    nb.dy[n] = cache.py[i] - nb.origin.y();
-    nb.dz[n] = cache.pz[i] - nb.origin.z();
-    nb.sqDist[n] = sq[i];
-    n += (sq[i] < limit || sq[i] == minSq) ? 1 : 0;
-  }
+  const Eigen::Index n = compactCandidates(cache.px.data(), cache.py.data(), cache.pz.data(), sq.data(), m,
+    nb.origin, minSq + cache.band, minSq, nb);
   nb.count = n;
   nb.minSqDist = minSq;
-  nb.weight.head(n) = (-(nb.sqDist.head(n) - minSq) * nb.invH2).exp();
-  nb.weightSum = nb.w().sum();
+  // The last vector is padded with neighbours of weight 0 at offset 0, which add nothing.
+  const Eigen::Index padded = (n + SimdLanes - 1) / SimdLanes * SimdLanes;
+  for (Eigen::Index i = n; i < padded; ++i)
+  {
+    nb.dx[i] = nb.dy[i] = nb.dz[i] = 0.0;
+    nb.sqDist[i] = std::numeric_limits<double>::infinity();
+  }
+  // Weights, their sum and the first moments in one pass.
+  const VecD nearestSq = splat(minSq);
+  const VecD scale = splat(-nb.invH2);
+  VecD sw{}, sx{}, sy{}, sz{};
+  for (Eigen::Index i = 0; i < padded; i += SimdLanes)
+  {
+    const VecD w = expNonPositive((load(nb.sqDist.data() + i) - nearestSq) * scale);
+    store(nb.weight.data() + i, w);
+    sw += w;
+    sx += w * load(nb.dx.data() + i);
+    sy += w * load(nb.dy.data() + i);
+    sz += w * load(nb.dz.data() + i);
+  }
+  nb.weightSum = lanesSum(sw);
+  nb.moment = Vec3(lanesSum(sx), lanesSum(sy), lanesSum(sz));
   nb.indexSerial = index.serial();
   nb.h = params.h;
   nb.cutoff = params.cutoff;
+}
+
+void expNonPositive(const double* x, double* out, Eigen::Index n)
+{
+  Eigen::Index i = 0;
+  for (; i + SimdLanes <= n; i += SimdLanes)
+  {
+    store(out + i, expNonPositive(load(x + i)));
+  }
+  for (; i < n; ++i)
+  {
+    VecD v{};
+    v[0] = x[i];
+    out[i] = expNonPositive(v)[0];
+  }
 }
 
 Neighbourhood& threadNeighbourhood()
@@ -209,25 +393,39 @@ Neighbourhood& threadNeighbourhood()
 
 Vec3 centroidOffset(const Neighbourhood& nb)
 {
-  const auto w = nb.w();
-  return Vec3((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum()) / nb.weightSum;
+  return nb.moment / nb.weightSum;
 }
 
-// sum_i w_i (p_i - y - m)(p_i - y - m)^T: the six distinct entries, as lazy array expressions
-// (no temporaries are allocated; each entry is one vectorized pass over the neighbours).
+// sum_i w_i (p_i - y - m)(p_i - y - m)^T: the six distinct entries in one pass over the
+// neighbours (the padding after the last one weighs 0).
 Mat3 weightedScatter(const Neighbourhood& nb, const Vec3& m)
 {
-  const auto w = nb.w();
-  const auto cx = nb.x() - m.x();
-  const auto cy = nb.y() - m.y();
-  const auto cz = nb.z() - m.z();
+  const VecD mx = splat(m.x());
+  const VecD my = splat(m.y());
+  const VecD mz = splat(m.z());
+  VecD xx{}, xy{}, xz{}, yy{}, yz{}, zz{};
+  for (Eigen::Index i = 0; i < nb.count; i += SimdLanes)
+  {
+    const VecD w = load(nb.weight.data() + i);
+    const VecD cx = load(nb.dx.data() + i) - mx;
+    const VecD cy = load(nb.dy.data() + i) - my;
+    const VecD cz = load(nb.dz.data() + i) - mz;
+    const VecD wx = w * cx;
+    const VecD wy = w * cy;
+    xx += wx * cx;
+    xy += wx * cy;
+    xz += wx * cz;
+    yy += wy * cy;
+    yz += wy * cz;
+    zz += w * cz * cz;
+  }
   Mat3 c;
-  c(0, 0) = (w * cx * cx).sum();
-  c(1, 1) = (w * cy * cy).sum();
-  c(2, 2) = (w * cz * cz).sum();
-  c(0, 1) = c(1, 0) = (w * cx * cy).sum();
-  c(0, 2) = c(2, 0) = (w * cx * cz).sum();
-  c(1, 2) = c(2, 1) = (w * cy * cz).sum();
+  c(0, 0) = lanesSum(xx);
+  c(1, 1) = lanesSum(yy);
+  c(2, 2) = lanesSum(zz);
+  c(0, 1) = c(1, 0) = lanesSum(xy);
+  c(0, 2) = c(2, 0) = lanesSum(xz);
+  c(1, 2) = c(2, 1) = lanesSum(yz);
   return c;
 }
 

@@ -59,6 +59,7 @@ struct Neighbourhood
   double minSqDist = 0.0;      ///< squared distance from y to the nearest point
   double invH2 = 1.0;          ///< 1 / h^2
   double weightSum = 0.0;      ///< sum of the weights (>= 1 whenever the cloud is not empty)
+  Vec3 moment = Vec3::Zero();  ///< sum of w_i (p_i - y)
   Eigen::Index count = 0;      ///< number of neighbours
   Eigen::ArrayXd dx, dy, dz;   ///< p_i - y, per coordinate
   Eigen::ArrayXd sqDist;       ///< |p_i - y|^2
@@ -80,7 +81,8 @@ struct Neighbourhood
   auto along(const Vec3& a) const { return a.x() * x() + a.y() * y() + a.z() * z(); }
   /// log of the factor that turns weight into the true Gaussian theta(y, p_i).
   double logScale() const { return -minSqDist * invH2; }
-  /// Sets size() to @p n, growing the arrays' capacity when needed.
+  /// Sets size() to @p n, growing the arrays' capacity when needed (with room for one vector
+  /// more: the arrays are processed in whole vectors, padded with weight 0 after the last entry).
   void resize(Eigen::Index n);
 };
 
@@ -97,6 +99,12 @@ struct Neighbourhood
  */
 void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y,
   Neighbourhood& nb);
+
+/**
+ * out[i] = exp(x[i]) for x[i] <= 0, several at a time: within one ulp of std::exp on [-708, 0],
+ * 0 below -708, NaN for NaN. The Gaussian weights are computed with it.
+ */
+void expNonPositive(const double* x, double* out, Eigen::Index n);
 
 /**
  * The calling thread's shared Neighbourhood, for evaluations that gather and then only read it
