@@ -201,3 +201,52 @@ TEST(Kernel, VectorizedExpMatchesStdExp)
   EXPECT_EQ(tail[0], out[1]);
   EXPECT_EQ(tail[2], out[3]);
 }
+
+// Truth: a matrix built from known eigenvalues and eigenvectors. Starting the decomposition from
+// a nearby basis (as the plane procedure does from one iterate to the next) must find the same
+// smallest eigenvector and the same stability as starting from scratch, in 3D and in 2D.
+TEST(Kernel, EigenDirectionFromNearbyFrameMatchesTruth)
+{
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const Vec3 lambda(2e-4, 0.6, 1.3); // a flat, noisy patch: l0 << l1
+  const Mat3 C = R * lambda.asDiagonal() * R.transpose();
+  const double stability = (lambda[1] - lambda[0]) / (lambda[1] + lambda[0]);
+  for (const double tilt : { 0.0, 1e-6, 1e-3, 0.05, 0.5 })
+  {
+    EigenFrame frame;
+    frame.vectors = R * Eigen::AngleAxisd(tilt, Vec3(0.3, -1, 0.2).normalized()).toRotationMatrix();
+    frame.valid = true;
+    const Direction d = smallestEigenDirection(C, 3, 1e-5, &frame);
+    ASSERT_TRUE(d.defined) << "tilt " << tilt;
+    EXPECT_NEAR(std::abs(d.n.dot(R.col(0))), 1.0, 1e-14) << "tilt " << tilt;
+    EXPECT_NEAR(d.stability, stability, 1e-12) << "tilt " << tilt;
+    // The frame comes back orthonormal, smallest eigenvector first.
+    EXPECT_LT((frame.vectors.transpose() * frame.vectors - Mat3::Identity()).norm(), 1e-14);
+    EXPECT_NEAR(std::abs(frame.vectors.col(0).dot(R.col(0))), 1.0, 1e-14);
+  }
+  const Direction cold = smallestEigenDirection(C, 3, 1e-5);
+  EXPECT_NEAR(std::abs(cold.n.dot(R.col(0))), 1.0, 1e-14);
+
+  // 2D: only the xy block counts; the frame keeps z as its third axis.
+  Mat3 C2 = Mat3::Zero();
+  const double a = 0.4;
+  const Eigen::Vector2d u(std::cos(a), std::sin(a));
+  const Eigen::Vector2d v(-std::sin(a), std::cos(a));
+  C2.topLeftCorner<2, 2>() = 1e-3 * u * u.transpose() + 0.9 * v * v.transpose();
+  C2(2, 2) = 7.0; // ignored in 2D
+  EigenFrame frame2;
+  frame2.vectors.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(a + 0.01).toRotationMatrix();
+  frame2.valid = true;
+  const Direction d2 = smallestEigenDirection(C2, 2, 1e-5, &frame2);
+  ASSERT_TRUE(d2.defined);
+  EXPECT_NEAR(std::abs(d2.n.head<2>().dot(u)), 1.0, 1e-14);
+  EXPECT_EQ(d2.n.z(), 0.0);
+  EXPECT_NEAR(d2.stability, (0.9 - 1e-3) / (0.9 + 1e-3), 1e-12);
+
+  // A rank-deficient matrix (a collinear neighbourhood in 3D) stays undefined from any start.
+  EigenFrame frame3;
+  frame3.vectors = R;
+  frame3.valid = true;
+  const Direction line = smallestEigenDirection(R.col(1) * R.col(1).transpose(), 3, 1e-5, &frame3);
+  EXPECT_FALSE(line.defined);
+}

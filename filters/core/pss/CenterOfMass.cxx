@@ -11,12 +11,12 @@ Direction CenterOfMass::direction(const Vec3& x) const
   return smallestEigenDirection(covarianceAboutCentroid(nb), dimension(), Params.minStability);
 }
 
-Direction CenterOfMass::planeFit(const Vec3& x, Vec3& offset) const
+Direction CenterOfMass::planeFit(const Vec3& x, Vec3& offset, EigenFrame& frame) const
 {
   Neighbourhood& nb = threadNeighbourhood();
   gatherNeighbourhood(Index, Params, x, nb);
   offset = centroidOffset(nb);
-  return smallestEigenDirection(weightedScatter(nb, offset) / nb.weightSum, dimension(), Params.minStability);
+  return smallestEigenDirection(weightedScatter(nb, offset) / nb.weightSum, dimension(), Params.minStability, &frame);
 }
 
 } // namespace pss

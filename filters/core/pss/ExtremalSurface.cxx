@@ -285,7 +285,8 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   // The plane procedure needs n(x) and c(x) - x at every iterate; planeFit gets both from one
   // neighbourhood.
   Vec3 centroid = Vec3::Zero();
-  auto fitAt = [&](const Vec3& p) { return plane ? s.planeFit(p, centroid) : s.direction(p); };
+  EigenFrame frame;
+  auto fitAt = [&](const Vec3& p) { return plane ? s.planeFit(p, centroid, frame) : s.direction(p); };
   Direction dir = fitAt(x);
   res.startDirection = dir;
   res.reason = StopReason::MaxIterations;

@@ -91,7 +91,7 @@ struct Neighbourhood
  * Returns at once when @p nb already holds this query (same index, h, cutoff and point).
  *
  * Each thread keeps the candidate points of its last k-d tree query, fetched with a margin
- * (a quarter of h, or a twentieth of the distance to the cloud if larger). A later query
+ * (half of h, or a twentieth of the distance to the cloud if larger). A later query
  * within that margin of the last fetch is answered from the candidates, which provably contain
  * its whole neighbourhood: the nearest point is at most dmin + delta away, so every point within
  * sqrt((dmin + delta)^2 + (cutoff h)^2) of y lies inside the fetched ball. Iterations of a
@@ -132,11 +132,23 @@ Mat3 covarianceAboutQuery(const Neighbourhood& nb);
 /// sum_i theta_N(y, p_i)(p_i - c)(p_i - c)^T: the centre-of-mass covariance (Sec. 5).
 Mat3 covarianceAboutCentroid(const Neighbourhood& nb);
 
+/// The eigenvectors of an earlier fit, to start a later one from (see smallestEigenDirection).
+struct EigenFrame
+{
+  Mat3 vectors = Mat3::Identity(); ///< orthonormal columns
+  bool valid = false;              ///< false: no earlier fit, start from scratch
+};
+
 /**
  * Eigenvector of the smallest eigenvalue of a symmetric positive semi-definite matrix, with the
  * stability (lambda_1 - lambda_0) / (lambda_1 + lambda_0). In 2D only the xy block is used.
+ *
+ * With a valid @p frame (the eigenvectors of a nearby matrix, such as the previous iterate's in
+ * a projection) the decomposition starts from it and takes one or two sweeps of Jacobi rotations
+ * instead of a QR iteration from scratch; the two agree to rounding. @p frame, when given,
+ * receives the eigenvectors found (smallest first).
  */
-Direction smallestEigenDirection(const Mat3& C, int dimension, double minStability);
+Direction smallestEigenDirection(const Mat3& C, int dimension, double minStability, EigenFrame* frame = nullptr);
 
 /// delta(y) = sum_i theta_N(y, p_i) |y - p_i|^2, the approximate squared distance (Sec. 5).
 double approximateSqDistance(const Neighbourhood& nb);

@@ -13,12 +13,12 @@ Direction LevinMLS::direction(const Vec3& x) const
   return smallestEigenDirection(covarianceAboutQuery(nb), dimension(), Params.minStability);
 }
 
-Direction LevinMLS::planeFit(const Vec3& x, Vec3& offset) const
+Direction LevinMLS::planeFit(const Vec3& x, Vec3& offset, EigenFrame& frame) const
 {
   Neighbourhood& nb = threadNeighbourhood();
   gatherNeighbourhood(Index, Params, x, nb);
   offset = centroidOffset(nb);
-  return smallestEigenDirection(covarianceAboutQuery(nb), dimension(), Params.minStability);
+  return smallestEigenDirection(covarianceAboutQuery(nb), dimension(), Params.minStability, &frame);
 }
 
 LineSample LevinMLS::lineSample(const Vec3& y, const Vec3& a) const

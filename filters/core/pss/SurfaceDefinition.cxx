@@ -24,7 +24,7 @@ double SurfaceDefinition::energy(const Vec3& y, const Vec3& a) const
   return lineSample(y, a).trueValue();
 }
 
-Direction SurfaceDefinition::planeFit(const Vec3& x, Vec3& offset) const
+Direction SurfaceDefinition::planeFit(const Vec3& x, Vec3& offset, EigenFrame&) const
 {
   thread_local Neighbourhood nb;
   const Direction d = direction(x);

@@ -45,9 +45,11 @@ public:
   /**
    * n(x) and c(x) - x, the offset of the normalized-weight centre of mass: what one step of the
    * plane procedure needs. The default gathers the neighbourhood a second time; definitions whose
-   * n comes from the same weighted neighbourhood override it to gather once.
+   * n comes from the same weighted neighbourhood override it to gather once. @p frame carries the
+   * eigenvectors from one iterate to the next (see smallestEigenDirection); definitions whose n
+   * is no eigenvector leave it alone.
    */
-  virtual Direction planeFit(const Vec3& x, Vec3& centroidOffset) const;
+  virtual Direction planeFit(const Vec3& x, Vec3& centroidOffset, EigenFrame& frame) const;
 
   const PointIndex& index() const { return Index; }
   const SurfaceParameters& parameters() const { return Params; }

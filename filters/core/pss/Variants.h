@@ -27,7 +27,7 @@ public:
   Variant variant() const override { return Variant::LevinMLS; }
   Direction direction(const Vec3& x) const override;
   LineSample lineSample(const Vec3& y, const Vec3& a) const override;
-  Direction planeFit(const Vec3& x, Vec3& centroidOffset) const override;
+  Direction planeFit(const Vec3& x, Vec3& centroidOffset, EigenFrame& frame) const override;
 };
 
 /**
@@ -57,7 +57,7 @@ public:
   using NormalizedMLS::NormalizedMLS;
   Variant variant() const override { return Variant::CenterOfMass; }
   Direction direction(const Vec3& x) const override;
-  Direction planeFit(const Vec3& x, Vec3& centroidOffset) const override;
+  Direction planeFit(const Vec3& x, Vec3& centroidOffset, EigenFrame& frame) const override;
 };
 
 /**
