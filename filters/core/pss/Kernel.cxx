@@ -496,19 +496,30 @@ bool eigenFromNearby(const Mat3& C, int dimension, Vec3& values, Mat3& vectors)
       const int p = pairs[k][0];
       const int q = pairs[k][1];
       const double apq = off[k];
-      // An entry below the rounding of its diagonal neighbours changes nothing.
-      if (!(std::abs(apq) > 1e-18 * std::sqrt(std::abs(d[p] * d[q]))))
+      // An entry below the rounding of its diagonal neighbours changes nothing (the criterion
+      // that keeps the small eigenvalues' relative accuracy).
+      constexpr double eps = std::numeric_limits<double>::epsilon();
+      if (!(apq * apq > eps * eps * std::abs(d[p] * d[q])))
       {
         continue;
       }
       rotated = true;
       // The rotation that zeroes a(p, q): theta = (a_qq - a_pp) / (2 a_pq), t = tan of the angle
-      // (the smaller root), then the updates of Rutishauser's formulation.
+      // (the smaller root), then the updates of Rutishauser's formulation. The last sweeps turn
+      // by tiny angles, where t = 1 / (2 theta) and c = 1 - t^2 / 2 are exact to rounding.
       const double theta = (d[q] - d[p]) / (2.0 * apq);
-      const double t = std::abs(theta) > 1e150
-        ? 0.5 / theta
-        : std::copysign(1.0, theta) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
-      const double c = 1.0 / std::sqrt(t * t + 1.0);
+      double t = 0.0;
+      double c = 0.0;
+      if (std::abs(theta) > 1e8)
+      {
+        t = 0.5 / theta;
+        c = 1.0 - 0.5 * t * t;
+      }
+      else
+      {
+        t = std::copysign(1.0, theta) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
+        c = 1.0 / std::sqrt(t * t + 1.0);
+      }
       const double sn = t * c;
       d[p] -= t * apq;
       d[q] += t * apq;
