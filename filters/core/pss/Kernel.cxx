@@ -253,20 +253,26 @@ struct CandidateCache
     const double reach = centerMinDist + margin;
     radius = std::sqrt(reach * reach + band) + margin;
     const double sqRadius = radius * radius;
-    count = 0;
     // The leaves come in index order, so the candidates do too: every later neighbourhood is
-    // then independent of where this fetch was made.
+    // then independent of where this fetch was made. (The count and the arrays are locals in
+    // the loop: this object is thread-local, and in a shared library every access to one costs
+    // a call.)
+    Eigen::Index n = 0;
     index.forEachLeafInBall(y, sqRadius, [&](std::uint32_t begin, std::uint32_t end) {
-      reserve(count + (end - begin));
+      reserve(n + (end - begin));
+      double* x = px.data();
+      double* yy = py.data();
+      double* z = pz.data();
       for (std::uint32_t i = begin; i < end; ++i)
       {
         const Vec3& p = index.point(i);
-        px[count] = p.x();
-        py[count] = p.y();
-        pz[count] = p.z();
-        count += (p - y).squaredNorm() < sqRadius ? 1 : 0;
+        x[n] = p.x();
+        yy[n] = p.y();
+        z[n] = p.z();
+        n += (p - y).squaredNorm() < sqRadius ? 1 : 0;
       }
     });
+    count = n;
     // The ball holds every point within radius only while the squared distances are finite.
     reusable = count > 0 && std::isfinite(sqRadius);
     if (count == 0)
