@@ -80,7 +80,7 @@ namespace
 // and adds the lanes in a fixed order at the end, so a result depends only on the neighbours
 // and their order, never on the thread or the call history.
 typedef double VecD __attribute__((vector_size(8 * SimdLanes)));
-typedef std::int64_t VecI __attribute__((vector_size(8 * SimdLanes)));
+typedef std::uint64_t VecU __attribute__((vector_size(8 * SimdLanes)));
 
 VecD load(const double* p)
 {
@@ -137,11 +137,12 @@ inline __attribute__((always_inline)) VecD expNonPositive(const VecD& v)
   p = p * r + 0.5;
   p = p * r + 1.0;
   p = p * r + 1.0;
-  VecI bits;
+  // Unsigned, so that a negative k wraps instead of shifting a negative number (undefined).
+  VecU bits;
   std::memcpy(&bits, &p, sizeof bits);
-  VecI kBits;
+  VecU kBits;
   std::memcpy(&kBits, &t, sizeof kBits);
-  constexpr std::int64_t shifterBits = 0x4338000000000000LL; // the bits of shifter
+  constexpr std::uint64_t shifterBits = 0x4338000000000000ULL; // the bits of shifter
   bits += (kBits - shifterBits) << 52;
   VecD e;
   std::memcpy(&e, &bits, sizeof e);
@@ -472,7 +473,7 @@ void eigenFromScratch(const Mat3& C, int dimension, Vec3& values, Mat3& vectors)
 
 // The same from the eigenvectors of a nearby matrix (the previous iterate's), by cyclic Jacobi
 // rotations of vectors^T C vectors: that matrix is nearly diagonal, and Jacobi's convergence is
-// quadratic, so one or two sweeps finish it. Returns false (and leaves the outputs to be
+// quadratic, so a few sweeps finish it. Returns false (and leaves the outputs to be
 // recomputed) if it has not converged after a few sweeps.
 bool eigenFromNearby(const Mat3& C, int dimension, Vec3& values, Mat3& vectors)
 {

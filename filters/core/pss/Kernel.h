@@ -144,7 +144,7 @@ struct EigenFrame
  * stability (lambda_1 - lambda_0) / (lambda_1 + lambda_0). In 2D only the xy block is used.
  *
  * With a valid @p frame (the eigenvectors of a nearby matrix, such as the previous iterate's in
- * a projection) the decomposition starts from it and takes one or two sweeps of Jacobi rotations
+ * a projection) the decomposition starts from it and takes a few sweeps of Jacobi rotations
  * instead of a QR iteration from scratch; the two agree to rounding. @p frame, when given,
  * receives the eigenvectors found (smallest first).
  */
