@@ -287,6 +287,7 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   Vec3 centroid = Vec3::Zero();
   EigenFrame frame;
   auto fitAt = [&](const Vec3& p) { return plane ? s.planeFit(p, centroid, frame) : s.direction(p); };
+  Vec3 fitted = x; // where dir was fitted
   Direction dir = fitAt(x);
   res.startDirection = dir;
   res.reason = StopReason::MaxIterations;
@@ -337,11 +338,22 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
       lastType = le.type;
     }
     previousStep = move * dir.n;
-    x = index.restrict(x + previousStep);
     res.iterations = it + 1;
     res.lastStep = std::abs(t);
+    x = index.restrict(x + previousStep);
+    const bool converged = std::abs(t) < opt.tolerance * h;
+    if (converged && plane)
+    {
+      // The plane procedure's last step, below the tolerance, lands on the plane just fitted; it
+      // is taken without another fit, and that plane's normal is the direction reported (energy
+      // and type at its fit point, at most tolerance * h away): one neighbourhood fewer per
+      // projection. The extremal procedure fits again: its n is n at the point itself.
+      res.reason = StopReason::Converged;
+      break;
+    }
+    fitted = x;
     dir = fitAt(x);
-    if (std::abs(t) < opt.tolerance * h)
+    if (converged)
     {
       res.reason = dir.defined ? StopReason::Converged : StopReason::UndefinedDirection;
       break;
@@ -352,11 +364,11 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   res.converged = res.reason == StopReason::Converged;
   if (dir.n.allFinite() && dir.n.squaredNorm() > 0.0)
   {
-    const LineSample at = s.lineSample(x, dir.n);
+    const LineSample at = s.lineSample(fitted, dir.n);
     res.energy = at.trueValue();
     res.type = opt.procedure == Procedure::Extremal && res.converged
       ? lastType
-      : typeFromCurvature(scaledCurvature(s, x, dir.n, at));
+      : typeFromCurvature(scaledCurvature(s, fitted, dir.n, at));
   }
   return res;
 }

@@ -95,7 +95,10 @@ struct ProjectionOptions
 struct ProjectionResult
 {
   Vec3 point = Vec3::Zero();          ///< where the projection stopped (== start on InvalidInput)
-  Direction direction;                ///< n at the final point
+  /// n at the final point. The plane procedure's converged result is the exception: its last
+  /// step (below tolerance * h) lands on the plane last fitted without another fit, and n,
+  /// energy and type are those of that fit.
+  Direction direction;
   Direction startDirection;           ///< n at the start point
   double energy = 0.0;                ///< e(point, n(point)) at true scale
   int iterations = 0;
