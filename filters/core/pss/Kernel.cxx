@@ -250,7 +250,7 @@ struct CandidateCache
     center = y;
     const auto nearest = index.nearest(y);
     centerMinDist = std::sqrt(nearest.second);
-    const double margin = std::max({ 0.5 * h, 0.05 * centerMinDist, minMargin });
+    const double margin = std::max({ 0.5 * h, std::min(0.05 * centerMinDist, 2.0 * h), minMargin });
     const double reach = centerMinDist + margin;
     radius = std::sqrt(reach * reach + band) + margin;
     const double sqRadius = radius * radius;

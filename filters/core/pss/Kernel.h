@@ -91,7 +91,8 @@ struct Neighbourhood
  * Returns at once when @p nb already holds this query (same index, h, cutoff and point).
  *
  * Each thread keeps the candidate points of its last k-d tree query, fetched with a margin
- * (half of h, or a twentieth of the distance to the cloud if larger). A later query
+ * (half of h, or a twentieth of the distance to the cloud if larger, up to 2 h: far from the
+ * cloud a wider margin would hold much of the cloud, per thread). A later query
  * within that margin of the last fetch is answered from the candidates, which provably contain
  * its whole neighbourhood: the nearest point is at most dmin + delta away, so every point within
  * sqrt((dmin + delta)^2 + (cutoff h)^2) of y lies inside the fetched ball. Iterations of a
