@@ -313,7 +313,9 @@ void prefetchNeighbourhoods(const PointIndex& index, const SurfaceParameters& pa
   const Vec3 c = index.restrict(center);
   if (!ThreadCache.covers(index, params, c, reach))
   {
-    ThreadCache.fetch(index, params, c, reach);
+    // Half an h of slack beyond the reach asked for, so that nearby centres (the steps of a
+    // projection, the samples of a line search) reuse the same fetch.
+    ThreadCache.fetch(index, params, c, reach + 0.5 * params.h);
   }
 }
 

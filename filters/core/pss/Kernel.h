@@ -117,7 +117,8 @@ Neighbourhood& threadNeighbourhood();
 /**
  * Makes the calling thread's candidates (see gatherNeighbourhood) cover every query within
  * @p reach of @p center, with at most one k-d tree query. For evaluations that spread over a known
- * region, such as the quadrature nodes of e_I, so they do not each query the tree.
+ * region, such as the quadrature nodes of e_I, so they do not each query the tree. The fetch
+ * reaches h/2 further, so that a centre moved by less than that is still covered.
  */
 void prefetchNeighbourhoods(const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach);
 
