@@ -243,7 +243,9 @@ LineExtremum nearestExtremumOnLine(
   {
     root = hi.t;
   }
-  if (std::abs(root) > maxTravel)
+  // The root is known to tol only: an extremum exactly maxTravel away (a start 1000 h above a
+  // plane) must not be lost to the rounding of its last digits.
+  if (std::abs(root) > maxTravel + tol)
   {
     return out;
   }

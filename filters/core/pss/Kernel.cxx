@@ -438,6 +438,30 @@ Mat3 weightedScatter(const Neighbourhood& nb, const Vec3& m)
   return c;
 }
 
+LineMoments lineMoments(const Neighbourhood& nb, const Vec3& a)
+{
+  const VecD ax = splat(a.x());
+  const VecD ay = splat(a.y());
+  const VecD az = splat(a.z());
+  VecD m1{}, m2{}, m3{}, m4{};
+  for (Eigen::Index i = 0; i < nb.count; i += SimdLanes)
+  {
+    const VecD s = ax * load(nb.dx.data() + i) + ay * load(nb.dy.data() + i) + az * load(nb.dz.data() + i);
+    const VecD ws = load(nb.weight.data() + i) * s;
+    const VecD ws2 = ws * s;
+    m1 += ws;
+    m2 += ws2;
+    m3 += ws2 * s;
+    m4 += ws2 * (s * s);
+  }
+  LineMoments out;
+  out.s1 = lanesSum(m1);
+  out.s2 = lanesSum(m2);
+  out.s3 = lanesSum(m3);
+  out.s4 = lanesSum(m4);
+  return out;
+}
+
 Mat3 covarianceAboutQuery(const Neighbourhood& nb)
 {
   return weightedScatter(nb, Vec3::Zero());

@@ -125,6 +125,14 @@ void prefetchNeighbourhoods(const PointIndex& index, const SurfaceParameters& pa
 /// c(y) - y, where c(y) = sum_i theta_N(y, p_i) p_i is the weighted centre of mass.
 Vec3 centroidOffset(const Neighbourhood& nb);
 
+/// sum_i w_i s_i^k for k = 1..4 with s_i = <a, p_i - y> (shifted weights): the moments along a
+/// line that e(y + t a, a) and its derivatives in t are built from, in one pass.
+struct LineMoments
+{
+  double s1 = 0.0, s2 = 0.0, s3 = 0.0, s4 = 0.0;
+};
+LineMoments lineMoments(const Neighbourhood& nb, const Vec3& a);
+
 /// sum_i w_i (p_i - y - m)(p_i - y - m)^T with the shifted weights (m an offset from y).
 Mat3 weightedScatter(const Neighbourhood& nb, const Vec3& m);
 

@@ -29,11 +29,11 @@ LineSample LevinMLS::lineSample(const Vec3& y, const Vec3& a) const
   // d s_i/dt = -1, so d/dt sum theta_i s_i^2 = sum theta_i (2 s_i^3 / h^2 - 2 s_i), and once more
   // d2/dt2 = sum theta_i (4 s_i^4 / h^4 - 10 s_i^2 / h^2 + 2).
   LineSample out;
-  const auto s = nb.along(a);
+  const LineMoments m = lineMoments(nb, a);
   const double k = nb.invH2;
-  out.value = (nb.w() * s.square()).sum();
-  out.slope = (nb.w() * (2.0 * k * s.cube() - 2.0 * s)).sum();
-  out.curvature = (nb.w() * (4.0 * k * k * s.square().square() - 10.0 * k * s.square() + 2.0)).sum();
+  out.value = m.s2;
+  out.slope = 2.0 * k * m.s3 - 2.0 * m.s1;
+  out.curvature = 4.0 * k * k * m.s4 - 10.0 * k * m.s2 + 2.0 * nb.weightSum;
   out.logScale = nb.logScale();
   out.nearestSqDist = nb.minSqDist;
   return out;

@@ -10,14 +10,14 @@ LineSample NormalizedMLS::lineSample(const Vec3& y, const Vec3& a) const
   gatherNeighbourhood(Index, Params, y, nb);
   // e = N / W with N = sum w_i s_i^2 and W = sum w_i; quotient rule with the derivatives of
   // LevinMLS::lineSample, dW/dt = sum w_i 2 s_i / h^2 and d2W/dt2 = sum w_i (4 s_i^2 / h^4 - 2 / h^2).
-  const auto s = nb.along(a);
+  const LineMoments m = lineMoments(nb, a);
   const double k = nb.invH2;
-  const double n = (nb.w() * s.square()).sum();
-  const double dn = (nb.w() * (2.0 * k * s.cube() - 2.0 * s)).sum();
-  const double ddn = (nb.w() * (4.0 * k * k * s.square().square() - 10.0 * k * s.square() + 2.0)).sum();
-  const double dw = 2.0 * k * (nb.w() * s).sum();
-  const double ddw = (nb.w() * (4.0 * k * k * s.square() - 2.0 * k)).sum();
   const double w = nb.weightSum;
+  const double n = m.s2;
+  const double dn = 2.0 * k * m.s3 - 2.0 * m.s1;
+  const double ddn = 4.0 * k * k * m.s4 - 10.0 * k * m.s2 + 2.0 * w;
+  const double dw = 2.0 * k * m.s1;
+  const double ddw = 4.0 * k * k * m.s2 - 2.0 * k * w;
   LineSample out;
   out.value = n / w;
   out.slope = dn / w - n * dw / (w * w);
