@@ -77,8 +77,6 @@ struct Neighbourhood
   auto d2() const { return sqDist.head(count); }
   auto w() const { return weight.head(count); }
   Vec3 offset(Eigen::Index i) const { return Vec3(dx[i], dy[i], dz[i]); }
-  /// <a, p_i - y> for every neighbour.
-  auto along(const Vec3& a) const { return a.x() * x() + a.y() * y() + a.z() * z(); }
   /// log of the factor that turns weight into the true Gaussian theta(y, p_i).
   double logScale() const { return -minSqDist * invH2; }
   /// Sets size() to @p n, growing the arrays' capacity when needed (with room for one vector
