@@ -150,9 +150,10 @@ inline __attribute__((always_inline)) VecD expNonPositive(const VecD& v)
   return v != v ? v : e;
 }
 
-// Keeps the candidates with in[i] set, in order: writes their offsets and squared distances
-// from position 0 on and returns how many there are. May write up to SimdLanes entries past the
-// returned count (the arrays have that room).
+// Keeps the candidates inside the band (squared distance below @p limit, or equal to the nearest
+// one's), in order: writes their offsets and squared distances to @p nb from position 0 on and
+// returns how many there are. May write up to four entries past that count (the arrays have
+// that room).
 Eigen::Index compactCandidates(const double* px, const double* py, const double* pz, const double* sq,
   Eigen::Index m, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
 {
