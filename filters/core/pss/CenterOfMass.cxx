@@ -16,7 +16,7 @@ Direction CenterOfMass::planeFit(const Vec3& x, Vec3& offset, EigenFrame& frame)
   Neighbourhood& nb = threadNeighbourhood();
   gatherNeighbourhood(Index, Params, x, nb);
   offset = centroidOffset(nb);
-  return smallestEigenDirection(weightedScatter(nb, offset) / nb.weightSum, dimension(), Params.minStability, &frame);
+  return smallestEigenDirection(covarianceAboutCentroid(nb), dimension(), Params.minStability, &frame);
 }
 
 } // namespace pss

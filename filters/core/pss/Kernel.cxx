@@ -518,8 +518,8 @@ bool eigenFromNearby(const Mat3& C, int dimension, Vec3& values, Mat3& vectors)
   }
   double d[3] = { a(0, 0), a(1, 1), a(2, 2) };
   double off[3] = { a(0, 1), a(0, 2), a(1, 2) }; // (p, q) = (0, 1), (0, 2), (1, 2)
-  constexpr int pairs[3][3] = { { 0, 1, 2 }, { 0, 2, 1 }, { 1, 2, 0 } }; // p, q and the third
-  // off[] index of the entries (r, p) and (r, q) for each pair.
+  constexpr int pairs[3][2] = { { 0, 1 }, { 0, 2 }, { 1, 2 } }; // (p, q)
+  // off[] index of the entries (r, p) and (r, q), r the third index, for each pair.
   constexpr int others[3][2] = { { 1, 2 }, { 0, 2 }, { 0, 1 } };
   const int rotations = dimension == 2 ? 1 : 3;
   for (int sweep = 0; sweep < 8; ++sweep)
