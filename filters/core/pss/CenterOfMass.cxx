@@ -6,17 +6,15 @@ namespace pss
 
 Direction CenterOfMass::direction(const Vec3& x) const
 {
-  Neighbourhood& nb = threadNeighbourhood();
-  gatherNeighbourhood(Index, Params, x, nb);
-  return smallestEigenDirection(covarianceAboutCentroid(nb), dimension(), Params.minStability);
+  DirectionMemory none; // no earlier fit: the decomposition starts from scratch
+  return directionNear(x, none);
 }
 
-Direction CenterOfMass::planeFit(const Vec3& x, Vec3& offset, EigenFrame& frame) const
+Direction CenterOfMass::directionNear(const Vec3& x, DirectionMemory& memory) const
 {
   Neighbourhood& nb = threadNeighbourhood();
   gatherNeighbourhood(Index, Params, x, nb);
-  offset = centroidOffset(nb);
-  return smallestEigenDirection(covarianceAboutCentroid(nb), dimension(), Params.minStability, &frame);
+  return smallestEigenDirection(covarianceAboutCentroid(nb), dimension(), Params.minStability, &memory.frame);
 }
 
 } // namespace pss

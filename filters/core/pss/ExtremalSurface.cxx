@@ -285,10 +285,10 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   const double h = s.h();
   const bool plane = opt.procedure == Procedure::Plane;
   // The plane procedure needs n(x) and c(x) - x at every iterate; planeFit gets both from one
-  // neighbourhood.
+  // neighbourhood. Each iterate's fit starts from what the previous one left in memory.
   Vec3 centroid = Vec3::Zero();
-  EigenFrame frame;
-  auto fitAt = [&](const Vec3& p) { return plane ? s.planeFit(p, centroid, frame) : s.direction(p); };
+  DirectionMemory memory;
+  auto fitAt = [&](const Vec3& p) { return plane ? s.planeFit(p, centroid, memory) : s.directionNear(p, memory); };
   Vec3 fitted = x; // where dir was fitted
   Direction dir = fitAt(x);
   res.startDirection = dir;

@@ -188,42 +188,67 @@ LineSample IntegralEnergy::lineSample(const Vec3& y, const Vec3& a) const
 
 Direction IntegralEnergy::direction(const Vec3& x) const
 {
-  return dimension() == 2 ? direction2D(x) : direction3D(x);
+  DirectionMemory none; // nothing to start from: every direction is scanned
+  return directionNear(x, none);
 }
 
-double IntegralEnergy::leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n) const
+IntegralEnergy::Across IntegralEnergy::leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n, const Vec3* near) const
 {
   if (dimension() == 2)
   {
-    return energy(x, Vec3(-n.y(), n.x(), 0.0));
+    const Vec3 b(-n.y(), n.x(), 0.0);
+    return { energy(x, b), b };
   }
   // Twelve samples of the half circle of directions orthogonal to n (a and -a are the same, so
   // the samples wrap around), then one more at the vertex of the parabola through the best
-  // sample and its neighbours.
+  // sample and its neighbours. Given the last iterate's answer (@p near), three samples around
+  // it do when the middle one is the least of them (the minimum has not moved past a neighbour);
+  // otherwise the full scan runs.
   Vec3 b1;
   Vec3 b2;
   planeBasis(n, b1, b2);
   constexpr int samples = 12;
   const double step = M_PI / samples;
-  std::array<double, samples> e;
-  int best = 0;
-  for (int k = 0; k < samples; ++k)
+  auto sampleAt = [&](double phi) { return energy(x, inPlane(b1, b2, phi)); };
+  double centre = 0.0;
+  double before = 0.0;
+  double best = 0.0;
+  double after = 0.0;
+  bool bracketed = false;
+  if (near)
   {
-    e[k] = energy(x, inPlane(b1, b2, k * step));
-    best = e[k] < e[best] ? k : best;
+    centre = std::atan2(near->dot(b2), near->dot(b1));
+    before = sampleAt(centre - step);
+    best = sampleAt(centre);
+    after = sampleAt(centre + step);
+    bracketed = best <= before && best <= after;
   }
-  const double before = e[(best + samples - 1) % samples];
-  const double after = e[(best + 1) % samples];
-  const double curvature = before - 2.0 * e[best] + after;
+  if (!bracketed)
+  {
+    std::array<double, samples> e;
+    int k0 = 0;
+    for (int k = 0; k < samples; ++k)
+    {
+      e[k] = sampleAt(k * step);
+      k0 = e[k] < e[k0] ? k : k0;
+    }
+    centre = k0 * step;
+    before = e[(k0 + samples - 1) % samples];
+    best = e[k0];
+    after = e[(k0 + 1) % samples];
+  }
+  const double curvature = before - 2.0 * best + after;
   if (!(curvature > 0.0))
   {
-    return e[best];
+    return { best, inPlane(b1, b2, centre) };
   }
   const double offset = 0.5 * (before - after) / curvature; // in [-1/2, 1/2] steps
-  return std::min(e[best], energy(x, inPlane(b1, b2, (best + offset) * step)));
+  const double vertex = centre + offset * step;
+  const double atVertex = sampleAt(vertex);
+  return atVertex < best ? Across{ atVertex, inPlane(b1, b2, vertex) } : Across{ best, inPlane(b1, b2, centre) };
 }
 
-Vec3 IntegralEnergy::refineDirection(const Vec3& x, const Vec3& start) const
+IntegralEnergy::Minimum IntegralEnergy::refineDirection(const Vec3& x, const Vec3& start) const
 {
   // Newton's method on the sphere. The gradient is analytic (the tilt sums); the Hessian is a
   // forward difference of it over hessianStep, wide enough that the truncation of the Gaussian
@@ -281,7 +306,7 @@ Vec3 IntegralEnergy::refineDirection(const Vec3& x, const Vec3& start) const
       break;
     }
   }
-  return f.a;
+  return { f.a, at.value };
 }
 
 namespace
@@ -299,31 +324,49 @@ Direction finishDirection(const Vec3& n, double eMin, double ePerp, double minSt
 
 } // namespace
 
-Direction IntegralEnergy::direction2D(const Vec3& x) const
+IntegralEnergy::Minimum IntegralEnergy::minimum2D(const Vec3& x, const Vec3* near) const
 {
-  // Scan the half circle of unoriented directions, then refine the best sample's bracket.
+  // Scan the half circle of unoriented directions, then refine the best sample's bracket by
+  // golden-section search. From the last iterate's n_I, three samples bracket the minimum
+  // when the middle one is the least (else the scan runs).
   constexpr int samples = 36;
   const double step = M_PI / samples;
   auto energyAt = [&](double phi) { return energy(x, Vec3(std::cos(phi), std::sin(phi), 0.0)); };
-  int best = 0;
-  double bestValue = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < samples; ++k)
+  double centre = 0.0;
+  bool bracketed = false;
+  if (near)
   {
-    const double e = energyAt(k * step);
-    if (e < bestValue)
-    {
-      bestValue = e;
-      best = k;
-    }
+    centre = std::atan2(near->y(), near->x());
+    const double e = energyAt(centre);
+    bracketed = e <= energyAt(centre - step) && e <= energyAt(centre + step);
   }
-  double eMin = bestValue;
-  const double phi = goldenMinimum(energyAt, (best - 1) * step, (best + 1) * step, AngularTolerance, eMin);
-  const Vec3 n(std::cos(phi), std::sin(phi), 0.0);
-  return finishDirection(n, eMin, leastEnergyOrthogonalTo(x, n), Params.minStability);
+  if (!bracketed)
+  {
+    int best = 0;
+    double bestValue = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < samples; ++k)
+    {
+      const double e = energyAt(k * step);
+      if (e < bestValue)
+      {
+        bestValue = e;
+        best = k;
+      }
+    }
+    centre = best * step;
+  }
+  Minimum out;
+  const double phi = goldenMinimum(energyAt, centre - step, centre + step, AngularTolerance, out.value);
+  out.n = Vec3(std::cos(phi), std::sin(phi), 0.0);
+  return out;
 }
 
-Direction IntegralEnergy::direction3D(const Vec3& x) const
+IntegralEnergy::Minimum IntegralEnergy::minimum3D(const Vec3& x, const Vec3* near) const
 {
+  if (near)
+  {
+    return refineDirection(x, *near);
+  }
   // Candidates: the 13 directions of a cube's axes, face and body diagonals (every unoriented
   // direction is within 35 degrees of one), plus the centre-of-mass eigenvectors, which are
   // usually within a few degrees of n_I near the cloud.
@@ -367,10 +410,25 @@ Direction IntegralEnergy::direction3D(const Vec3& x) const
       n = c;
     }
   }
+  return refineDirection(x, n);
+}
 
-  n = refineDirection(x, n);
-  eMin = energy(x, n);
-  return finishDirection(n, eMin, leastEnergyOrthogonalTo(x, n), Params.minStability);
+Direction IntegralEnergy::directionNear(const Vec3& x, DirectionMemory& memory) const
+{
+  // The last n_I is where the search starts only while the iterates stay within a tenth of h:
+  // n_I turns little over such a step, so the search stays in the same basin, while a longer
+  // step (a projection's first, from a noisy start) may cross to where another direction wins,
+  // and gets the full scan.
+  constexpr double warmReach = 0.1;
+  const bool warm = memory.valid && (x - memory.point).norm() <= warmReach * Params.h;
+  const Minimum least = dimension() == 2 ? minimum2D(x, warm ? &memory.n : nullptr)
+                                         : minimum3D(x, warm ? &memory.n : nullptr);
+  const Across across = leastEnergyOrthogonalTo(x, least.n, warm ? &memory.across : nullptr);
+  memory.valid = least.n.allFinite() && across.direction.allFinite();
+  memory.point = x;
+  memory.n = least.n;
+  memory.across = across.direction;
+  return finishDirection(least.n, least.value, across.value, Params.minStability);
 }
 
 } // namespace pss

@@ -6,19 +6,26 @@ namespace pss
 
 Direction LevinMLS::direction(const Vec3& x) const
 {
+  DirectionMemory none; // no earlier fit: the decomposition starts from scratch
+  return directionNear(x, none);
+}
+
+Direction LevinMLS::directionNear(const Vec3& x, DirectionMemory& memory) const
+{
   Neighbourhood& nb = threadNeighbourhood();
   gatherNeighbourhood(Index, Params, x, nb);
   // The shift factor exp(logScale) scales C(x) and cannot move its eigenvectors; normalizing
   // (NormalizedMLS) divides it by a positive number, which cannot either.
-  return smallestEigenDirection(covarianceAboutQuery(nb), dimension(), Params.minStability);
+  return smallestEigenDirection(covarianceAboutQuery(nb), dimension(), Params.minStability, &memory.frame);
 }
 
-Direction LevinMLS::planeFit(const Vec3& x, Vec3& offset, EigenFrame& frame) const
+Direction LevinMLS::planeFit(const Vec3& x, Vec3& offset, DirectionMemory& memory) const
 {
-  Neighbourhood& nb = threadNeighbourhood();
-  gatherNeighbourhood(Index, Params, x, nb);
-  offset = centroidOffset(nb);
-  return smallestEigenDirection(covarianceAboutQuery(nb), dimension(), Params.minStability, &frame);
+  // One gather for both: directionNear (this class's or CenterOfMass's) leaves x's neighbourhood
+  // in the thread's shared one.
+  const Direction d = directionNear(x, memory);
+  offset = centroidOffset(threadNeighbourhood());
+  return d;
 }
 
 LineSample LevinMLS::lineSample(const Vec3& y, const Vec3& a) const

@@ -24,10 +24,15 @@ double SurfaceDefinition::energy(const Vec3& y, const Vec3& a) const
   return lineSample(y, a).trueValue();
 }
 
-Direction SurfaceDefinition::planeFit(const Vec3& x, Vec3& offset, EigenFrame&) const
+Direction SurfaceDefinition::directionNear(const Vec3& x, DirectionMemory&) const
+{
+  return direction(x);
+}
+
+Direction SurfaceDefinition::planeFit(const Vec3& x, Vec3& offset, DirectionMemory& memory) const
 {
   thread_local Neighbourhood nb;
-  const Direction d = direction(x);
+  const Direction d = directionNear(x, memory);
   gatherNeighbourhood(Index, Params, x, nb);
   offset = centroidOffset(nb);
   return d;

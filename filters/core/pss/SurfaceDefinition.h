@@ -19,6 +19,19 @@
 namespace pss
 {
 
+/**
+ * What one iterate of a projection leaves for the direction at the next (see
+ * SurfaceDefinition::directionNear). Start each projection with a default-constructed one.
+ */
+struct DirectionMemory
+{
+  EigenFrame frame;         ///< eigenvector definitions: the last fit's eigenvectors
+  bool valid = false;       ///< direction-search definitions (n_I): the fields below are set
+  Vec3 point = Vec3::Zero(); ///< where the last n was found
+  Vec3 n = Vec3::Zero();     ///< that n
+  Vec3 across = Vec3::Zero(); ///< the least-energy direction orthogonal to it (for the stability)
+};
+
 class SurfaceDefinition
 {
 public:
@@ -34,6 +47,15 @@ public:
   virtual Direction direction(const Vec3& x) const = 0;
 
   /**
+   * n(x) for an iterate that follows, closely, one whose direction filled @p memory (a
+   * projection's steps): eigenvector definitions start their decomposition from the last
+   * eigenvectors (same result to rounding); IntegralEnergy starts its search for n_I from the
+   * last n_I instead of scanning every direction (see its class comment). Updates @p memory.
+   * The default ignores it and calls direction().
+   */
+  virtual Direction directionNear(const Vec3& x, DirectionMemory& memory) const;
+
+  /**
    * e(y, a) and d/dt e(y + t a, a) at t = 0 (a fixed, the weights moving with y). @p a must be a
    * unit vector (z = 0 in 2D). Thread-safe.
    */
@@ -44,12 +66,11 @@ public:
 
   /**
    * n(x) and c(x) - x, the offset of the normalized-weight centre of mass: what one step of the
-   * plane procedure needs. The default gathers the neighbourhood a second time; definitions whose
-   * n comes from the same weighted neighbourhood override it to gather once. @p frame carries the
-   * eigenvectors from one iterate to the next (see smallestEigenDirection); definitions whose n
-   * is no eigenvector leave it alone.
+   * plane procedure needs. The default takes n from directionNear() and gathers the
+   * neighbourhood a second time; definitions whose n comes from the same weighted neighbourhood
+   * override it to gather once. @p memory carries what one iterate's fit leaves for the next.
    */
-  virtual Direction planeFit(const Vec3& x, Vec3& centroidOffset, EigenFrame& frame) const;
+  virtual Direction planeFit(const Vec3& x, Vec3& centroidOffset, DirectionMemory& memory) const;
 
   const PointIndex& index() const { return Index; }
   const SurfaceParameters& parameters() const { return Params; }

@@ -27,7 +27,8 @@ public:
   Variant variant() const override { return Variant::LevinMLS; }
   Direction direction(const Vec3& x) const override;
   LineSample lineSample(const Vec3& y, const Vec3& a) const override;
-  Direction planeFit(const Vec3& x, Vec3& centroidOffset, EigenFrame& frame) const override;
+  Direction directionNear(const Vec3& x, DirectionMemory& memory) const override;
+  Direction planeFit(const Vec3& x, Vec3& centroidOffset, DirectionMemory& memory) const override;
 };
 
 /**
@@ -57,7 +58,7 @@ public:
   using NormalizedMLS::NormalizedMLS;
   Variant variant() const override { return Variant::CenterOfMass; }
   Direction direction(const Vec3& x) const override;
-  Direction planeFit(const Vec3& x, Vec3& centroidOffset, EigenFrame& frame) const override;
+  Direction directionNear(const Vec3& x, DirectionMemory& memory) const override;
 };
 
 /**
@@ -74,7 +75,11 @@ public:
  * centre-of-mass eigenvectors), refined by Newton's method on the sphere. Tilting the plane by an
  * angle towards an in-plane axis moves each node along a in proportion to its coordinate on that
  * axis, so the tilt gradient is one more sum over the same nodes as the slope (see integrate());
- * the Hessian is a difference of two such gradients. Stability is
+ * the Hessian is a difference of two such gradients. Within a projection (directionNear), an
+ * iterate less than h/10 from the last one starts Newton from the last n_I instead of scanning
+ * the candidates, and the e_perp search from the last e_perp direction: about half the e_I of
+ * a cold search. Such a short step cannot carry n_I far, but where two minima of e_I over
+ * directions are nearly equal the warm search keeps following the one it had. Stability is
  * (e_perp - e_min) / (e_perp + e_min), e_perp the least energy over directions orthogonal to n_I:
  * for a quadratic form this is exactly the eigenvalue measure the other variants report.
  */
@@ -84,6 +89,7 @@ public:
   IntegralEnergy(const PointIndex& index, const SurfaceParameters& params);
   Variant variant() const override { return Variant::Integral; }
   Direction direction(const Vec3& x) const override;
+  Direction directionNear(const Vec3& x, DirectionMemory& memory) const override;
   LineSample lineSample(const Vec3& y, const Vec3& a) const override;
   double energy(const Vec3& y, const Vec3& a) const override;
 
@@ -104,13 +110,27 @@ private:
     Eigen::Vector2d tilt = Eigen::Vector2d::Zero();
   };
 
+  /// A direction with the value of e_I there.
+  struct Minimum
+  {
+    Vec3 n = Vec3::Zero();
+    double value = 0.0;
+  };
+  /// The least e_I over the directions orthogonal to n_I, and where it is.
+  struct Across
+  {
+    double value = 0.0;
+    Vec3 direction = Vec3::Zero();
+  };
+
   Frame frameOf(const Vec3& a) const;
   static Frame tilted(const Frame& f, const Eigen::Vector2d& step);
   PlaneIntegral integrate(const Vec3& x, const Frame& f, bool derivatives) const;
-  Vec3 refineDirection(const Vec3& x, const Vec3& start) const;
-  double leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n) const;
-  Direction direction2D(const Vec3& x) const;
-  Direction direction3D(const Vec3& x) const;
+  Minimum refineDirection(const Vec3& x, const Vec3& start) const;
+  /// The searches for n_I and e_perp start near @p near (the last iterate's answer) when given.
+  Across leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n, const Vec3* near) const;
+  Minimum minimum2D(const Vec3& x, const Vec3* near) const;
+  Minimum minimum3D(const Vec3& x, const Vec3* near) const;
 
   GaussHermiteRule Rule;
   DistanceField Field;
@@ -125,6 +145,10 @@ public:
   DeltaEnergy(const PointIndex& index, const SurfaceParameters& params);
   Variant variant() const override { return Variant::Delta; }
   Direction direction(const Vec3& x) const override { return Directions.direction(x); }
+  Direction directionNear(const Vec3& x, DirectionMemory& memory) const override
+  {
+    return Directions.directionNear(x, memory);
+  }
   LineSample lineSample(const Vec3& y, const Vec3& a) const override;
 
 private:
