@@ -250,3 +250,43 @@ TEST(Kernel, EigenDirectionFromNearbyFrameMatchesTruth)
   const Direction line = smallestEigenDirection(R.col(1) * R.col(1).transpose(), 3, 1e-5, &frame3);
   EXPECT_FALSE(line.defined);
 }
+
+// Truth: a neighbourhood is defined by the cloud alone, so gathering it from the focused subset
+// of a prefetch (as e_I's quadrature nodes do) must give the same neighbours, in the same order,
+// with the same weights and sums, bit for bit, as gathering it from a k-d tree fetch at the point.
+TEST(Kernel, FocusedGatherMatchesPlainGatherBitwise)
+{
+  const PointIndex index(randomBox(20000, 3, 20.0, 11), 3);
+  SurfaceParameters params;
+  params.h = 1.0;
+  const Vec3 centre(10.0, 9.0, 11.0);
+  const double reach = 1.5;
+  std::mt19937 rng(5);
+  std::vector<Vec3> queries;
+  for (int i = 0; i < 40; ++i)
+  {
+    queries.push_back(centre + reach * std::uniform_real_distribution<double>(0.0, 1.0)(rng) * randomUnit(rng, 3));
+  }
+  // Plain gathers first, each from a fetch of its own (nothing is focused yet)...
+  std::vector<Neighbourhood> plain(queries.size());
+  for (std::size_t i = 0; i < queries.size(); ++i)
+  {
+    gatherNeighbourhood(index, params, queries[i], plain[i]);
+  }
+  // ...then the same queries after a wider prefetch and a focus on the region they lie in.
+  prefetchNeighbourhoods(index, params, centre, 3.0 * reach);
+  focusNeighbourhoods(index, params, centre, reach);
+  for (std::size_t i = 0; i < queries.size(); ++i)
+  {
+    Neighbourhood nb;
+    gatherNeighbourhood(index, params, queries[i], nb);
+    const Neighbourhood& ref = plain[i];
+    ASSERT_EQ(nb.size(), ref.size()) << "query " << i;
+    ASSERT_GT(nb.size(), 10);
+    EXPECT_EQ(nb.minSqDist, ref.minSqDist);
+    EXPECT_EQ(nb.weightSum, ref.weightSum);
+    EXPECT_EQ(nb.moment, ref.moment);
+    EXPECT_TRUE((nb.x() == ref.x()).all() && (nb.y() == ref.y()).all() && (nb.z() == ref.z()).all());
+    EXPECT_TRUE((nb.w() == ref.w()).all());
+  }
+}

@@ -158,3 +158,33 @@ TEST(Direction, IntegralAndDeltaStayNormal3D)
   checkStaysNormal(index, 2.0, Variant::Integral, { 0.1, 0.5, 1, 2, 5, 10 }, { 0.37 });
   checkStaysNormal(index, 2.0, Variant::Delta, { 0.5, 2, 10 }, { 0.37 });
 }
+
+// Truth: on a sphere n is radial for every definition. A projection's later iterates find n from
+// the direction the previous iterate left (directionNear): a step of h/20 later it must still be
+// radial, and agree with the search from scratch (eigen definitions: to rounding; n_I: to the
+// angular tolerance of its Newton iteration).
+TEST(Direction, DirectionNearAgreesWithDirectionFromScratch)
+{
+  const double R = 10.0;
+  const double h = 1.0;
+  PointIndex index(sphereCap(R, 0.6, 0.15 * h), 3);
+  SurfaceParameters params;
+  params.h = h;
+  const Vec3 radial = Vec3(0.1, -0.2, 1.0).normalized();
+  const Vec3 first = (R + 0.3 * h) * radial;
+  const Vec3 second = first + 0.05 * h * Vec3(1.0, 0.5, -0.2).normalized();
+  for (const Variant v : { Variant::LevinMLS, Variant::CenterOfMass, Variant::Integral })
+  {
+    const auto s = makeSurface(v, index, params);
+    DirectionMemory memory;
+    s->directionNear(first, memory);
+    const Direction warm = s->directionNear(second, memory);
+    const Direction cold = s->direction(second);
+    // 1 - |cos| of the angle between them: 1e-12 is an angle of 1.4e-6.
+    const double tolerance = v == Variant::Integral ? 1e-12 : 1e-14;
+    ASSERT_TRUE(warm.defined) << variantName(v);
+    EXPECT_NEAR(std::abs(warm.n.dot(cold.n)), 1.0, tolerance) << variantName(v);
+    EXPECT_NEAR(std::abs(warm.n.dot(second.normalized())), 1.0, 1e-4) << variantName(v);
+    EXPECT_NEAR(warm.stability, cold.stability, 1e-3 * cold.stability) << variantName(v);
+  }
+}

@@ -292,6 +292,48 @@ struct CandidateCache
     }
   }
 
+  // Fills this cache with the candidates of @p wider (which must cover every query within
+  // @p reach of @p c) that any such query can need: the same guarantee as a fetch at c with
+  // margin reach, from a scan of wider's candidates instead of a k-d tree query.
+  void focus(const CandidateCache& wider, const Vec3& c, double reach)
+  {
+    indexSerial = wider.indexSerial;
+    h = wider.h;
+    band = wider.band;
+    center = c;
+    const Eigen::Index m = wider.count;
+    thread_local Eigen::ArrayXd sq;
+    if (sq.size() < m)
+    {
+      sq.resize(m);
+    }
+    auto d2 = sq.head(m);
+    d2 = (wider.px.head(m) - c.x()).square() + (wider.py.head(m) - c.y()).square() +
+      (wider.pz.head(m) - c.z()).square();
+    centerMinDist = std::sqrt(d2.minCoeff());
+    const double outer = centerMinDist + reach;
+    radius = std::sqrt(outer * outer + band) + reach;
+    const double sqRadius = radius * radius;
+    reserve(m);
+    const double* wx = wider.px.data();
+    const double* wy = wider.py.data();
+    const double* wz = wider.pz.data();
+    const double* ds = sq.data();
+    double* x = px.data();
+    double* y = py.data();
+    double* z = pz.data();
+    Eigen::Index n = 0;
+    for (Eigen::Index i = 0; i < m; ++i)
+    {
+      x[n] = wx[i];
+      y[n] = wy[i];
+      z[n] = wz[i];
+      n += ds[i] < sqRadius ? 1 : 0;
+    }
+    count = n;
+    reusable = wider.reusable && n > 0 && std::isfinite(sqRadius);
+  }
+
   // Room for @p n candidates, keeping the first count.
   void reserve(Eigen::Index n)
   {
@@ -306,6 +348,8 @@ struct CandidateCache
 };
 
 thread_local CandidateCache ThreadCache;
+// A subset of ThreadCache's candidates for a smaller region (see focusNeighbourhoods).
+thread_local CandidateCache FocusCache;
 
 } // namespace
 
@@ -320,9 +364,19 @@ void prefetchNeighbourhoods(const PointIndex& index, const SurfaceParameters& pa
   }
 }
 
+void focusNeighbourhoods(const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach)
+{
+  const Vec3 c = index.restrict(center);
+  if (FocusCache.covers(index, params, c, reach))
+  {
+    return;
+  }
+  prefetchNeighbourhoods(index, params, c, reach);
+  FocusCache.focus(ThreadCache, c, reach);
+}
+
 void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, Neighbourhood& nb)
 {
-  CandidateCache& cache = ThreadCache;
   thread_local Eigen::ArrayXd candidateSq;
 
   const Vec3 origin = index.restrict(y);
@@ -333,7 +387,11 @@ void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& param
   nb.indexSerial = 0; // until the new contents are complete
   nb.origin = origin;
   nb.invH2 = 1.0 / (params.h * params.h);
-  if (!cache.covers(index, params, nb.origin))
+  // Either cache holds, in index order, every point the neighbourhood can need, so which one
+  // serves the query does not change a bit of the result.
+  const bool focused = FocusCache.covers(index, params, nb.origin);
+  CandidateCache& cache = focused ? FocusCache : ThreadCache;
+  if (!focused && !cache.covers(index, params, nb.origin))
   {
     cache.fetch(index, params, nb.origin);
   }

@@ -120,6 +120,15 @@ Neighbourhood& threadNeighbourhood();
  */
 void prefetchNeighbourhoods(const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach);
 
+/**
+ * Like prefetchNeighbourhoods, for a smaller region inside a prefetched one: keeps, in a second
+ * per-thread cache, just the prefetched candidates that queries within @p reach of @p center can
+ * need, so that each of them scans those instead of the whole prefetch. e_I calls it for each
+ * quarter of its quadrature nodes. Neighbourhoods are the same bit for bit whichever cache
+ * serves them.
+ */
+void focusNeighbourhoods(const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach);
+
 /// c(y) - y, where c(y) = sum_i theta_N(y, p_i) p_i is the weighted centre of mass.
 Vec3 centroidOffset(const Neighbourhood& nb);
 
