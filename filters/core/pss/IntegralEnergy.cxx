@@ -276,7 +276,9 @@ IntegralEnergy::Minimum IntegralEnergy::refineDirection(const Vec3& x, const Vec
   // dominate it. The step uses |eigenvalues|, so it goes downhill at saddles too, is capped at
   // maxTurn (beyond that the quadratic model means little), and is halved until e_I decreases.
   // Where e_I is constant along a ring of directions (n is not unique there, stability ~0) the
-  // steps stop decreasing it and the iteration ends.
+  // steps stop decreasing it and the iteration ends. After a step, the last Hessian (carried
+  // along by the parallel transport of tilted()) predicts the next one; when that is below the
+  // tolerance the iteration ends without the two integrals of a new Hessian.
   constexpr double hessianStep = 1e-3;
   constexpr double maxTurn = 0.2;
   constexpr double angularTolerance = 1e-8;
@@ -302,8 +304,10 @@ IntegralEnergy::Minimum IntegralEnergy::refineDirection(const Vec3& x, const Vec
       break;
     }
     const Eigen::Vector2d lambda = eigen.eigenvalues().cwiseAbs().cwiseMax(1e-9 * largest);
-    Eigen::Vector2d step =
-      -(eigen.eigenvectors() * (eigen.eigenvectors().transpose() * at.tilt).cwiseQuotient(lambda));
+    auto newtonStep = [&](const Eigen::Vector2d& gradient) -> Eigen::Vector2d {
+      return -(eigen.eigenvectors() * (eigen.eigenvectors().transpose() * gradient).cwiseQuotient(lambda));
+    };
+    Eigen::Vector2d step = newtonStep(at.tilt);
     if (step.norm() > maxTurn)
     {
       step *= maxTurn / step.norm();
@@ -321,7 +325,7 @@ IntegralEnergy::Minimum IntegralEnergy::refineDirection(const Vec3& x, const Vec
         break;
       }
     }
-    if (!moved || step.norm() < angularTolerance)
+    if (!moved || step.norm() < angularTolerance || !(newtonStep(at.tilt).norm() >= angularTolerance))
     {
       break;
     }
