@@ -25,10 +25,10 @@ namespace pss
  */
 struct DirectionMemory
 {
-  EigenFrame frame;         ///< eigenvector definitions: the last fit's eigenvectors
-  bool valid = false;       ///< direction-search definitions (n_I): the fields below are set
-  Vec3 point = Vec3::Zero(); ///< where the last n was found
-  Vec3 n = Vec3::Zero();     ///< that n
+  EigenFrame frame;           ///< eigenvector definitions: the last fit's eigenvectors
+  bool valid = false;         ///< direction-search definitions (n_I): the fields below are set
+  Vec3 point = Vec3::Zero();  ///< where the last n was found
+  Vec3 n = Vec3::Zero();      ///< that n
   Vec3 across = Vec3::Zero(); ///< the least-energy direction orthogonal to it (for the stability)
 };
 
