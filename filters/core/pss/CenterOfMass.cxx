@@ -4,12 +4,6 @@
 namespace pss
 {
 
-Direction CenterOfMass::direction(const Vec3& x) const
-{
-  DirectionMemory none; // no earlier fit: the decomposition starts from scratch
-  return directionNear(x, none);
-}
-
 Direction CenterOfMass::directionNear(const Vec3& x, DirectionMemory& memory) const
 {
   Neighbourhood& nb = threadNeighbourhood();

@@ -292,6 +292,18 @@ struct CandidateCache
     }
   }
 
+  // |p - y|^2 for the first count candidates, into out (resized when short); returns them.
+  auto squaredDistances(const Vec3& y, Eigen::ArrayXd& out) const
+  {
+    if (out.size() < count)
+    {
+      out.resize(count);
+    }
+    auto sq = out.head(count);
+    sq = (px.head(count) - y.x()).square() + (py.head(count) - y.y()).square() + (pz.head(count) - y.z()).square();
+    return sq;
+  }
+
   // Fills this cache with the candidates of @p wider (which must cover every query within
   // @p reach of @p c) that any such query can need: the same guarantee as a fetch at c with
   // margin reach, from a scan of wider's candidates instead of a k-d tree query.
@@ -303,14 +315,7 @@ struct CandidateCache
     center = c;
     const Eigen::Index m = wider.count;
     thread_local Eigen::ArrayXd sq;
-    if (sq.size() < m)
-    {
-      sq.resize(m);
-    }
-    auto d2 = sq.head(m);
-    d2 = (wider.px.head(m) - c.x()).square() + (wider.py.head(m) - c.y()).square() +
-      (wider.pz.head(m) - c.z()).square();
-    centerMinDist = std::sqrt(d2.minCoeff());
+    centerMinDist = std::sqrt(wider.squaredDistances(c, sq).minCoeff());
     const double outer = centerMinDist + reach;
     radius = std::sqrt(outer * outer + band) + reach;
     const double sqRadius = radius * radius;
@@ -396,15 +401,9 @@ void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& param
     cache.fetch(index, params, nb.origin);
   }
   const Eigen::Index m = cache.count;
-  if (candidateSq.size() < m)
-  {
-    candidateSq.resize(m);
-  }
   // Offsets are p - y from absolute coordinates: for large coordinates this subtraction is the
   // only place digits can go, and it is exact to one rounding whatever the cache centre was.
-  auto sq = candidateSq.head(m);
-  sq = (cache.px.head(m) - nb.origin.x()).square() + (cache.py.head(m) - nb.origin.y()).square() +
-    (cache.pz.head(m) - nb.origin.z()).square();
+  const auto sq = cache.squaredDistances(nb.origin, candidateSq);
   const double minSq = sq.minCoeff();
   nb.resize(m);
   const Eigen::Index n = compactCandidates(cache.px.data(), cache.py.data(), cache.pz.data(), sq.data(), m,

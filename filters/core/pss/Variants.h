@@ -57,7 +57,6 @@ class CenterOfMass : public NormalizedMLS
 public:
   using NormalizedMLS::NormalizedMLS;
   Variant variant() const override { return Variant::CenterOfMass; }
-  Direction direction(const Vec3& x) const override;
   Direction directionNear(const Vec3& x, DirectionMemory& memory) const override;
 };
 
