@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SurfaceMesh.h
+ * @brief The extremal surface as a triangle mesh (polylines in 2D), only where it is defined.
+ *
+ * The method, in stages (each a member of SurfaceMesher, so that a caller with its own thread
+ * pool, progress and abort, such as the VTK filter, can drive them):
+ * 1. band: the cells of a regular grid (spacing cellSize * h) that hold a cloud point, grown by
+ *    band * h in every direction. Only these cells are ever visited, so time and memory follow
+ *    the surface's area, never the bounding box's volume.
+ * 2. evaluate: at every corner of a band cell, n(x) and g(x) = d/dt e(x + t n, n) at t = 0
+ *    (Eq. 2) for the n as computed (unoriented).
+ * 3. orient: n is unoriented, so g's sign is meaningless until the n of neighbouring corners
+ *    agree. Orientation is propagated over the grid edges of the band, most parallel neighbours
+ *    first (a maximum spanning tree of |n_a . n_b|, as in Hoppe et al.'s normal orientation); each
+ *    connected piece starts from its first corner, oriented away from the cloud's centroid.
+ * 4. contour: every band cell is split into d! simplices along its main diagonal (Kuhn's
+ *    subdivision: 6 tetrahedra, or 2 triangles in 2D, the same split in every cell, so
+ *    neighbouring cells share their faces' triangulations and the contour has no cracks); a
+ *    simplex gives a triangle or two (a segment in 2D) where the oriented g changes sign. Simplices
+ *    with an undefined n at a corner, or across which n turns by more than maxSeamAngle (a seam
+ *    of the orientation, where a sign change of g means nothing), are skipped.
+ * 5. classify: every crossing vertex (linearly interpolated on its grid edge) is projected onto
+ *    the surface and labelled as the domain classifier does (pss::classifyStart). Zero crossings
+ *    of g at maxima of e, on spurious sheets, or outside the domain project far away or are not
+ *    InDomain.
+ * 6. finish: a simplex is kept only when all its vertices are InDomain and their projections
+ *    travelled at most maxVertexTravel cells; vertices move to their projections (projectVertices)
+ *    and the unused ones are dropped. The mesh's topology is then counted.
+ * Every stage is deterministic: the result does not depend on the number of threads.
+ */
+#pragma once
+
+#include "pss/Domain.h"
+#include "pss/ExtremalSurface.h"
+#include "pss/SurfaceDefinition.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace pss
+{
+
+struct MeshOptions
+{
+  double cellSize = 1.0;        ///< grid spacing, in units of h (> 0)
+  double band = 2.0;            ///< how far from the cloud cells are visited, in units of h (> 0)
+  bool projectVertices = true;  ///< move the vertices onto the surface (else keep the grid crossings)
+  double maxVertexTravel = 2.0; ///< in cells: a crossing whose projection moves farther is dropped
+  double maxSeamAngle = 60.0;   ///< degrees: simplices across which oriented n turns more are skipped
+  std::size_t maxBandCells = std::size_t(1) << 25; ///< refuse larger bands (memory ~ 100 bytes a cell)
+  ProjectionOptions projection;  ///< how crossings are projected (Definition 1 by default)
+  DomainThresholds domain;       ///< what counts as InDomain (the classifier's thresholds)
+  void validate() const;         ///< throws std::invalid_argument
+};
+
+/// Counts that say what the mesher did and what the mesh is.
+struct MeshStatistics
+{
+  std::size_t bandCells = 0;          ///< cells visited
+  std::size_t gridVertices = 0;       ///< their corners, where n and g were evaluated
+  std::size_t undefinedVertices = 0;  ///< corners where n is undefined
+  std::size_t seamSimplices = 0;      ///< simplices skipped because n turns too much across them
+  std::size_t crossings = 0;          ///< zero crossings of g found (before the domain test)
+  std::size_t droppedVertices = 0;    ///< crossings not InDomain or that travelled too far
+  std::size_t droppedSimplices = 0;   ///< triangles (segments) dropped with them
+  std::size_t components = 0;         ///< connected pieces of the result
+  std::size_t boundaryEdges = 0;      ///< edges of one triangle (3D); polyline ends (2D)
+  std::size_t nonManifoldEdges = 0;   ///< edges of three or more triangles (3D); vertices of 3+ segments (2D)
+  long long eulerCharacteristic = 0;  ///< V - E + F (3D); V - E (2D)
+  double measure = 0.0;               ///< total area (3D) or length (2D)
+  double largestComponentMeasure = 0.0;
+};
+
+/// The result: points, per-point evidence and cells (triangles in 3D, segments in 2D).
+struct SurfaceMesh
+{
+  int dimension = 3;
+  std::vector<Vec3> points;
+  std::vector<Vec3> normals;            ///< consistently oriented n at each point (zero if undefined)
+  std::vector<DomainEvidence> evidence; ///< the projection and domain label of each point
+  std::vector<Vec3> crossings;          ///< where each point was found on its grid edge
+  std::vector<std::array<std::uint32_t, 3>> triangles; ///< 3D, counter-clockwise about the normal
+  std::vector<std::array<std::uint32_t, 2>> segments;  ///< 2D
+  MeshStatistics statistics;
+};
+
+/**
+ * Runs the stages of the file comment. Construct (validates and sizes the band, throwing
+ * std::invalid_argument with the cell count when it is absurd), then call evaluateVertex() for
+ * every index below gridVertexCount(), orient(), contour(), classifyCrossing() for every index
+ * below crossingCount(), and finish(). The two loops may run on any number of threads (distinct
+ * indices); the other stages are sequential and cheap.
+ */
+class SurfaceMesher
+{
+public:
+  SurfaceMesher(const SurfaceDefinition& surface, const MeshOptions& options);
+
+  std::size_t gridVertexCount() const { return Keys.size(); }
+  void evaluateVertex(std::size_t i);
+  void orient();
+  void contour();
+  std::size_t crossingCount() const { return Crossings.size(); }
+  void classifyCrossing(std::size_t i);
+  SurfaceMesh finish();
+
+  /// Grid spacing in absolute units.
+  double cellLength() const { return Cell; }
+
+private:
+  using Key = std::uint64_t;
+  struct CornerValue
+  {
+    Vec3 n = Vec3::Zero();
+    double g = 0.0;
+    bool defined = false;
+  };
+  struct Crossing
+  {
+    Vec3 point = Vec3::Zero();
+    Vec3 reference = Vec3::Zero(); ///< oriented n of the grid edge's end, to orient the result
+    DomainEvidence evidence;
+  };
+  struct EdgeHash
+  {
+    std::size_t operator()(const std::pair<Key, Key>& e) const;
+  };
+
+  Key keyOf(const std::array<long long, 3>& c) const;
+  std::array<long long, 3> coordsOf(Key k) const;
+  Vec3 positionOf(Key k) const;
+  std::size_t vertexIndex(Key k) const; ///< index in Keys, or npos
+  void buildBand();
+  void contourSimplex(const std::array<std::size_t, 4>& corners, int count);
+  std::uint32_t crossingOn(std::size_t a, std::size_t b);
+
+  const SurfaceDefinition& Surface;
+  MeshOptions Options;
+  int Dimension = 3;
+  double Cell = 0.0;
+  Vec3 Origin = Vec3::Zero();
+  std::array<long long, 3> Size{ { 1, 1, 1 } };
+  std::vector<Key> Cells;          ///< band cells, by the key of their lowest corner, sorted
+  std::vector<Key> Keys;           ///< their corners, sorted
+  std::vector<CornerValue> Values; ///< per corner
+  std::vector<signed char> Sign;   ///< per corner: +1 / -1 after orient(), 0 where undefined
+  std::vector<Crossing> Crossings;
+  std::unordered_map<std::pair<Key, Key>, std::uint32_t, EdgeHash> CrossingOfEdge;
+  std::vector<std::array<std::uint32_t, 3>> Triangles;
+  std::vector<std::array<std::uint32_t, 2>> Segments;
+  MeshStatistics Statistics;
+};
+
+/// All stages on @p threads threads (0 = all cores): the core's one-call entry point.
+SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options, int threads = 0);
+
+} // namespace pss
