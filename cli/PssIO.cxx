@@ -13,13 +13,16 @@
 #include "vtkLZ4DataCompressor.h"
 #include "vtkLZMADataCompressor.h"
 #include "vtkNew.h"
+#include "vtkOBJWriter.h"
 #include "vtkPLYReader.h"
 #include "vtkPLYWriter.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSTLWriter.h"
 #include "vtkUnstructuredGrid.h"
+#include "vtkWriter.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 #include "vtkXMLPolyDataReader.h"
@@ -2356,6 +2359,39 @@ vtkSmartPointer<vtkDataSet> ReadDataSet(const std::string& path)
   throw std::runtime_error("unknown input format '" + ext + "' of " + path + " (use .vtp .vtu .vti .ply .csv .xyz)");
 }
 
+namespace
+{
+
+// STL and OBJ hold geometry only (OBJ also the normals): for meshes, through VTK's own writers.
+void WriteMeshOnly(vtkPolyData* mesh, const std::string& path, const std::string& ext)
+{
+  if (mesh->GetNumberOfPolys() == 0 && ext == ".stl")
+  {
+    throw std::runtime_error("cannot write " + path + ": STL holds triangles, and this output has none");
+  }
+  vtkSmartPointer<vtkWriter> writer;
+  if (ext == ".stl")
+  {
+    auto stl = vtkSmartPointer<vtkSTLWriter>::New();
+    stl->SetFileTypeToBinary();
+    stl->SetFileName(path.c_str());
+    writer = stl;
+  }
+  else
+  {
+    auto obj = vtkSmartPointer<vtkOBJWriter>::New();
+    obj->SetFileName(path.c_str());
+    writer = obj;
+  }
+  writer->SetInputData(mesh);
+  if (writer->Write() == 0)
+  {
+    throw std::runtime_error("cannot write " + path);
+  }
+}
+
+} // namespace
+
 void WriteDataSet(vtkDataSet* data, const std::string& path, Compression compression)
 {
   const std::string ext = Extension(path);
@@ -2390,6 +2426,10 @@ void WriteDataSet(vtkDataSet* data, const std::string& path, Compression compres
       throw std::runtime_error("cannot write " + path);
     }
   }
+  else if (ext == ".stl" || ext == ".obj")
+  {
+    WriteMeshOnly(AsPolyData(data), path, ext);
+  }
   else if (ext == ".csv")
   {
     WriteTable(data, path, true);
@@ -2400,7 +2440,8 @@ void WriteDataSet(vtkDataSet* data, const std::string& path, Compression compres
   }
   else
   {
-    throw std::runtime_error("unknown output format '" + ext + "' of " + path + " (use .vtp .vtu .vti .ply .csv .xyz)");
+    throw std::runtime_error(
+      "unknown output format '" + ext + "' of " + path + " (use .vtp .vtu .vti .ply .stl .obj .csv .xyz)");
   }
 }
 

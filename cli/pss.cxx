@@ -7,6 +7,7 @@
  *   pss classify  CLOUD -o labels.vtp [--start FILE] ...
  *   pss sample    CLOUD -o field.vti [--grid NX,NY,NZ | --probe FILE] ...
  *   pss glyphs    CLOUD -o glyphs.vtp [--samples FILE] [--segments FILE] ...
+ *   pss mesh      CLOUD -o mesh.vtp|.ply|.stl|.obj [--cell C] [--band B] ...
  *
  * Every subcommand drives the same VTK filters a pipeline or ParaView uses; `pss SUBCOMMAND --help`
  * lists its flags with their defaults. Exit status: 0 success, 1 failure (message on stderr),
@@ -21,6 +22,7 @@
 #include "vtkPointSetSurfaceDomainClassifier.h"
 #include "vtkPointSetSurfaceEnergyGlyphs.h"
 #include "vtkPointSetSurfaceFieldSampler.h"
+#include "vtkPointSetSurfaceMesher.h"
 #include "vtkPointSetSurfaceProjection.h"
 
 #include "vtkCallbackCommand.h"
@@ -28,6 +30,7 @@
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
 #include "vtkExecutive.h"
+#include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
@@ -86,7 +89,7 @@ struct Run
 
 void AddCommonOptions(OptionTable& t, Run& run)
 {
-  t.Value("output", "FILE", "output file (.vtp .vtu .vti .ply .csv .xyz); required", [&](const std::string& v) { run.output = v; });
+  t.Value("output", "FILE", "output file (.vtp .vtu .vti .ply .stl .obj .csv .xyz); required", [&](const std::string& v) { run.output = v; });
   t.Value("o", "FILE", "same as --output", [&](const std::string& v) { run.output = v; });
   t.Value("threads", "N", "worker threads; 0 = all cores (default 0)", [&](const std::string& v) {
     run.threads = pss_cli::ToInt("threads", v);
@@ -501,6 +504,76 @@ int Glyphs(const std::vector<std::string>& args)
   return 0;
 }
 
+// Prints the mesher's counts (field data of its output) for --verbose.
+void SummarizeMesh(const Run& run, vtkPolyData* mesh)
+{
+  if (!run.verbose)
+  {
+    return;
+  }
+  std::fprintf(stderr, "pss: %lld vertices, %lld %s", static_cast<long long>(mesh->GetNumberOfPoints()),
+    static_cast<long long>(mesh->GetNumberOfCells()), mesh->GetNumberOfPolys() > 0 ? "triangles" : "cells");
+  for (const char* name : { "BandCells", "Crossings", "DroppedVertices", "Components", "BoundaryEdges",
+         "NonManifoldEdges", "EulerCharacteristic" })
+  {
+    if (vtkDataArray* a = mesh->GetFieldData()->GetArray(name))
+    {
+      std::fprintf(stderr, ", %s %lld", name, static_cast<long long>(a->GetComponent(0, 0)));
+    }
+  }
+  std::fprintf(stderr, "\n");
+}
+
+int Mesh(const std::vector<std::string>& args)
+{
+  Run run;
+  vtkNew<vtkPointSetSurfaceMesher> mesher;
+  OptionTable t;
+  AddCommonOptions(t, run);
+  AddSurfaceOptions(t, mesher->GetSurface());
+  t.Value("cell", "C", "grid cell size, in h (default 1)",
+    [&](const std::string& v) { mesher->SetCellSize(pss_cli::ToDouble("cell", v)); });
+  t.Value("band", "B", "visit cells within B h of the cloud (default 2)",
+    [&](const std::string& v) { mesher->SetBand(pss_cli::ToDouble("band", v)); });
+  t.Switch("no-projection", "leave the vertices at the grid's zero crossings of g (default: projected)",
+    [&]() { mesher->ProjectVerticesOff(); });
+  t.Value("procedure", "NAME", "extremal | plane: how the vertices are projected (default extremal)",
+    [&](const std::string& v) { mesher->SetProcedure(pss_cli::ToChoice("procedure", v, { "extremal", "plane" })); });
+  t.Value("max-distance", "D", "outside the domain: a projection ending farther than D h from the cloud (default 1)",
+    [&](const std::string& v) { mesher->SetMaxDistance(pss_cli::ToDouble("max-distance", v)); });
+  t.Value("max-normal-angle", "DEG", "outside the domain: n off the cloud's normal by more (default 30)",
+    [&](const std::string& v) { mesher->SetMaxNormalAngle(pss_cli::ToDouble("max-normal-angle", v)); });
+  t.Value("max-vertex-travel", "CELLS", "drop crossings whose projection moves farther (default 2)",
+    [&](const std::string& v) { mesher->SetMaxVertexTravel(pss_cli::ToDouble("max-vertex-travel", v)); });
+  t.Value("max-seam-angle", "DEG", "skip cells across which the oriented n turns more (default 60)",
+    [&](const std::string& v) { mesher->SetMaxSeamAngle(pss_cli::ToDouble("max-seam-angle", v)); });
+  std::vector<std::string> positional;
+  if (!ParseCommand("mesh", "CLOUD -o FILE [options]",
+        "Meshes the point-set surface of CLOUD where it is defined: triangles in 3D (polylines in 2D) with\n"
+        "Normals, Stability, Energy, DomainLabel and the classifier's evidence. .stl and .obj keep the geometry only.",
+        t, args, positional))
+  {
+    return 0;
+  }
+  if (positional.size() != 1)
+  {
+    throw UsageError{ "mesh needs exactly one input cloud" };
+  }
+  RequireOutput(run);
+  pss_vtk::EnsureParallelBackend();
+  vtkSMPTools::Initialize(run.threads);
+
+  vtkSmartPointer<vtkPointSet> cloud = PrepareCloud(run, positional[0], mesher->GetSurface());
+  mesher->SetInputData(cloud);
+  run.Stage("compute", [&]() {
+    Execute(run, mesher);
+    return 0;
+  });
+  SummarizeMesh(run, mesher->GetOutput());
+  Write(run, mesher->GetOutput(), run.output);
+  return 0;
+}
+
 const char* const MainHelp = "usage: pss SUBCOMMAND [options]   (pss SUBCOMMAND --help for its flags)\n"
                              "\n"
                              "  generate   write a synthetic cloud (line, circle, corner, noisy-curve, plane, sphere, two-sheets)\n"
@@ -508,8 +581,9 @@ const char* const MainHelp = "usage: pss SUBCOMMAND [options]   (pss SUBCOMMAND 
                              "  classify   label start points InDomain / Spurious / Undefined / NotConverged\n"
                              "  sample     sample n, e, delta and g on a grid or at the points of a dataset\n"
                              "  glyphs     energy plots and best-fitting segments (Figures 4 and 5)\n"
+                             "  mesh       the surface as triangles (polylines in 2D), only where it is defined\n"
                              "\n"
-                             "Files are read and written by extension: .vtp .vtu .vti .ply .csv .xyz\n";
+                             "Files are read and written by extension: .vtp .vtu .vti .ply .csv .xyz (.stl .obj: written only)\n";
 
 // VTK's errors go to stderr as single lines, not to a popup or with the debug banner.
 class PlainOutputWindow : public vtkOutputWindow
@@ -546,6 +620,8 @@ int main(int argc, char** argv)
       return Sample(args);
     if (command == "glyphs")
       return Glyphs(args);
+    if (command == "mesh")
+      return Mesh(args);
     std::cerr << "pss: unknown subcommand '" << command << "'\n\n" << MainHelp;
     return 2;
   }

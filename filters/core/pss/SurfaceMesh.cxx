@@ -545,10 +545,13 @@ std::vector<std::array<std::uint32_t, K>> keepCells(const std::vector<std::array
   return out;
 }
 
-// Components, boundary and non-manifold edges (vertices in 2D), Euler characteristic, measure.
+} // namespace
+
 void countTopology(SurfaceMesh& mesh)
 {
   MeshStatistics& st = mesh.statistics;
+  st.components = st.boundaryEdges = st.nonManifoldEdges = 0;
+  st.measure = st.largestComponentMeasure = 0.0;
   const std::size_t nv = mesh.points.size();
   UnionFind pieces(nv);
   std::vector<double> cellMeasure;
@@ -609,8 +612,6 @@ void countTopology(SurfaceMesh& mesh)
     st.largestComponentMeasure = std::max(st.largestComponentMeasure, entry.second);
   }
 }
-
-} // namespace
 
 SurfaceMesh SurfaceMesher::finish()
 {

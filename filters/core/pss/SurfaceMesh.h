@@ -51,7 +51,7 @@ struct MeshOptions
   bool projectVertices = true;  ///< move the vertices onto the surface (else keep the grid crossings)
   double maxVertexTravel = 2.0; ///< in cells: a crossing whose projection moves farther is dropped
   double maxSeamAngle = 60.0;   ///< degrees: simplices across which oriented n turns more are skipped
-  std::size_t maxBandCells = std::size_t(1) << 25; ///< refuse larger bands (memory ~ 100 bytes a cell)
+  std::size_t maxBandCells = std::size_t(1) << 24; ///< refuse larger bands (about 60 bytes a cell)
   ProjectionOptions projection;  ///< how crossings are projected (Definition 1 by default)
   DomainThresholds domain;       ///< what counts as InDomain (the classifier's thresholds)
   void validate() const;         ///< throws std::invalid_argument
@@ -154,6 +154,13 @@ private:
   std::vector<std::array<std::uint32_t, 2>> Segments;
   MeshStatistics Statistics;
 };
+
+/**
+ * Fills @p mesh.statistics' topology and measure (components, boundary and non-manifold edges,
+ * Euler characteristic, area or length, largest piece) from its points and cells; the other
+ * counts are left alone. finish() calls it; so can anyone measuring a mesh made elsewhere.
+ */
+void countTopology(SurfaceMesh& mesh);
 
 /// All stages on @p threads threads (0 = all cores): the core's one-call entry point.
 SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options, int threads = 0);

@@ -1,0 +1,230 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPointSetSurfaceMesher.h"
+
+#include "PointSetSurfacesSMP.h"
+#include "PointSetSurfacesVTKUtilities.h"
+#include "vtkPointSetSurface.h"
+
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include "pss/SurfaceMesh.h"
+
+#include <memory>
+#include <stdexcept>
+
+vtkStandardNewMacro(vtkPointSetSurfaceMesher);
+vtkCxxSetObjectMacro(vtkPointSetSurfaceMesher, Surface, vtkPointSetSurface);
+
+vtkPointSetSurfaceMesher::vtkPointSetSurfaceMesher()
+{
+  this->SetNumberOfInputPorts(1);
+  this->SetNumberOfOutputPorts(1);
+  this->Surface = vtkPointSetSurface::New();
+}
+
+vtkPointSetSurfaceMesher::~vtkPointSetSurfaceMesher()
+{
+  this->SetSurface(nullptr);
+}
+
+double vtkPointSetSurfaceMesher::GetEffectiveScale() const
+{
+  return this->Surface ? this->Surface->GetEffectiveScale() : 0.0;
+}
+
+vtkMTimeType vtkPointSetSurfaceMesher::GetMTime()
+{
+  return pss_vtk::LatestMTime(this->Superclass::GetMTime(), this->Surface);
+}
+
+int vtkPointSetSurfaceMesher::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  return 1;
+}
+
+namespace
+{
+
+// The mesh's points, cells and per-point arrays as a vtkPolyData.
+void WriteMesh(const pss::SurfaceMesh& mesh, vtkPolyData* output)
+{
+  const auto n = static_cast<vtkIdType>(mesh.points.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  auto normals = pss_vtk::NewArray<vtkDoubleArray>("Normals", n, 3);
+  auto stability = pss_vtk::NewArray<vtkDoubleArray>("Stability", n, 1);
+  auto energy = pss_vtk::NewArray<vtkDoubleArray>("Energy", n, 1);
+  auto label = pss_vtk::NewArray<vtkIntArray>("DomainLabel", n, 1);
+  auto distance = pss_vtk::NewArray<vtkDoubleArray>("DistanceToCloud", n, 1);
+  auto normalAngle = pss_vtk::NewArray<vtkDoubleArray>("NormalAngle", n, 1);
+  auto startAngle = pss_vtk::NewArray<vtkDoubleArray>("StartAngle", n, 1);
+  auto startStability = pss_vtk::NewArray<vtkDoubleArray>("StartStability", n, 1);
+  auto displacement = pss_vtk::NewArray<vtkDoubleArray>("Displacement", n, 3);
+  auto iterations = pss_vtk::NewArray<vtkIntArray>("Iterations", n, 1);
+  auto reason = pss_vtk::NewArray<vtkIntArray>("StopReason", n, 1);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const pss::DomainEvidence& ev = mesh.evidence[i];
+    points->SetPoint(i, mesh.points[i].data());
+    normals->SetTypedTuple(i, mesh.normals[i].data());
+    stability->SetValue(i, ev.projection.direction.stability);
+    energy->SetValue(i, ev.projection.energy);
+    label->SetValue(i, static_cast<int>(ev.label));
+    distance->SetValue(i, ev.distanceToCloud);
+    normalAngle->SetValue(i, ev.normalAngle);
+    startAngle->SetValue(i, ev.startAngle);
+    startStability->SetValue(i, ev.startStability);
+    const pss::Vec3 d = mesh.points[i] - mesh.crossings[i];
+    displacement->SetTypedTuple(i, d.data());
+    iterations->SetValue(i, ev.projection.iterations);
+    reason->SetValue(i, static_cast<int>(ev.projection.reason));
+  }
+  vtkNew<vtkCellArray> cells;
+  if (mesh.dimension == 3)
+  {
+    cells->AllocateExact(static_cast<vtkIdType>(mesh.triangles.size()), 3 * static_cast<vtkIdType>(mesh.triangles.size()));
+    for (const auto& t : mesh.triangles)
+    {
+      const vtkIdType ids[3] = { t[0], t[1], t[2] };
+      cells->InsertNextCell(3, ids);
+    }
+    output->SetPolys(cells);
+  }
+  else
+  {
+    cells->AllocateExact(static_cast<vtkIdType>(mesh.segments.size()), 2 * static_cast<vtkIdType>(mesh.segments.size()));
+    for (const auto& s : mesh.segments)
+    {
+      const vtkIdType ids[2] = { s[0], s[1] };
+      cells->InsertNextCell(2, ids);
+    }
+    output->SetLines(cells);
+  }
+  output->SetPoints(points);
+  vtkPointData* pd = output->GetPointData();
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(normals), static_cast<vtkDataArray*>(stability),
+         static_cast<vtkDataArray*>(energy), static_cast<vtkDataArray*>(label),
+         static_cast<vtkDataArray*>(distance), static_cast<vtkDataArray*>(normalAngle),
+         static_cast<vtkDataArray*>(startAngle), static_cast<vtkDataArray*>(startStability),
+         static_cast<vtkDataArray*>(displacement), static_cast<vtkDataArray*>(iterations),
+         static_cast<vtkDataArray*>(reason) })
+  {
+    pd->AddArray(a);
+  }
+  pd->SetNormals(normals);
+}
+
+// What the mesher did, as one-value field arrays, so a written mesh says how it was made.
+void AddStatistics(const pss::MeshStatistics& st, vtkFieldData* fd)
+{
+  const std::pair<const char*, long long> counts[] = {
+    { "BandCells", static_cast<long long>(st.bandCells) },
+    { "GridVertices", static_cast<long long>(st.gridVertices) },
+    { "Crossings", static_cast<long long>(st.crossings) },
+    { "DroppedVertices", static_cast<long long>(st.droppedVertices) },
+    { "Components", static_cast<long long>(st.components) },
+    { "BoundaryEdges", static_cast<long long>(st.boundaryEdges) },
+    { "NonManifoldEdges", static_cast<long long>(st.nonManifoldEdges) },
+    { "EulerCharacteristic", st.eulerCharacteristic },
+  };
+  for (const auto& entry : counts)
+  {
+    auto a = pss_vtk::NewArray<vtkIdTypeArray>(entry.first, 1, 1);
+    a->SetValue(0, static_cast<vtkIdType>(entry.second));
+    fd->AddArray(a);
+  }
+}
+
+} // namespace
+
+int vtkPointSetSurfaceMesher::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPointSet* cloud = vtkPointSet::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  if (!this->Surface)
+  {
+    vtkErrorMacro(<< "no vtkPointSetSurface is set");
+    return 0;
+  }
+  if (!this->Surface->Prepare(cloud))
+  {
+    vtkErrorMacro(<< "cannot define the surface: " << this->Surface->GetLastError());
+    return 0;
+  }
+  pss_vtk::WarnAboutSkippedPoints(this, this->Surface);
+  pss::MeshOptions options;
+  options.cellSize = this->CellSize;
+  options.band = this->Band;
+  options.projectVertices = this->ProjectVertices;
+  options.maxVertexTravel = this->MaxVertexTravel;
+  options.maxSeamAngle = this->MaxSeamAngle;
+  options.maxBandCells = static_cast<std::size_t>(this->MaximumNumberOfBandCells);
+  options.projection.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
+  options.domain.maxDistance = this->MaxDistance;
+  options.domain.maxNormalAngle = this->MaxNormalAngle;
+  std::unique_ptr<pss::SurfaceMesher> mesher;
+  try
+  {
+    mesher = std::make_unique<pss::SurfaceMesher>(*this->Surface->GetDefinition(), options);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  // Progress: the corners' n and g, then the (cheap, sequential) orientation and contouring,
+  // then the projections of the crossings.
+  if (!pss_vtk::ParallelFor(this, static_cast<vtkIdType>(mesher->gridVertexCount()),
+        [&](vtkIdType i) { mesher->evaluateVertex(static_cast<std::size_t>(i)); }, 0.0, 0.45))
+  {
+    return 1; // aborted: empty output
+  }
+  mesher->orient();
+  mesher->contour();
+  this->UpdateProgress(0.5);
+  if (!pss_vtk::ParallelFor(this, static_cast<vtkIdType>(mesher->crossingCount()),
+        [&](vtkIdType i) { mesher->classifyCrossing(static_cast<std::size_t>(i)); }, 0.5, 0.98))
+  {
+    return 1;
+  }
+  const pss::SurfaceMesh mesh = mesher->finish();
+  WriteMesh(mesh, output);
+  pss_vtk::AddSurfaceFieldData(output, this->Surface);
+  for (const auto& entry : { std::make_pair("CellSize", this->CellSize), std::make_pair("Band", this->Band) })
+  {
+    auto a = pss_vtk::NewArray<vtkDoubleArray>(entry.first, 1, 1);
+    a->SetValue(0, entry.second);
+    output->GetFieldData()->AddArray(a);
+  }
+  AddStatistics(mesh.statistics, output->GetFieldData());
+  return 1;
+}
+
+void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "CellSize: " << this->CellSize << "\n";
+  os << indent << "Band: " << this->Band << "\n";
+  os << indent << "ProjectVertices: " << (this->ProjectVertices ? "On" : "Off") << "\n";
+  os << indent << "Procedure: " << (this->Procedure == PLANE ? "Plane" : "Extremal") << "\n";
+  os << indent << "MaxDistance: " << this->MaxDistance << "\n";
+  os << indent << "MaxNormalAngle: " << this->MaxNormalAngle << "\n";
+  os << indent << "MaxVertexTravel: " << this->MaxVertexTravel << "\n";
+  os << indent << "MaxSeamAngle: " << this->MaxSeamAngle << "\n";
+  os << indent << "MaximumNumberOfBandCells: " << this->MaximumNumberOfBandCells << "\n";
+  pss_vtk::PrintSurface(os, indent, this->Surface);
+}

@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkPointSetSurfaceMesher
+ * @brief   the point-set surface as a triangle mesh (polylines in 2D), only where it is defined
+ *
+ * Input: the cloud (any vtkPointSet). Output: a vtkPolyData of triangles (3D) or line segments
+ * (2D) approximating the extremal surface (Definition 1 of Amenta & Kil) of the Surface's
+ * definition, restricted to its domain. The method (pss::SurfaceMesher, see
+ * filters/core/pss/SurfaceMesh.h):
+ * - a sparse band of grid cells of side CellSize * h around the cloud (cells holding a point,
+ *   grown by Band * h), so cost and memory follow the surface's area, not the bounding box;
+ * - n and g (Eq. 2) at the band's grid corners, n oriented consistently over the band (propagated
+ *   between neighbouring corners, most parallel first), so that g changes sign only through
+ *   the surface (and its maxima);
+ * - the zero crossings of g contoured with marching simplices (each cell split into six
+ *   tetrahedra, two triangles in 2D, the same way everywhere: no cracks);
+ * - every crossing projected onto the surface and labelled like vtkPointSetSurfaceDomainClassifier
+ *   does; a triangle is kept only when its three vertices are InDomain and travelled at most
+ *   MaxVertexTravel cells (maxima of e and spurious sheets fail one or the other). With
+ *   ProjectVertices (default) the vertices are the projections, so their accuracy is the
+ *   projection's, not the grid's.
+ *
+ * Point arrays: `Normals` (n at the vertex, oriented consistently over each piece; the active
+ * normals; triangles are counter-clockwise about them), `Stability`, `Energy`, `DomainLabel` (all 0,
+ * InDomain, by construction: the array is there for pipelines that append classified points),
+ * `DistanceToCloud`, `NormalAngle`, `StartAngle`, `StartStability` (the classifier's evidence for the
+ * crossing that became the vertex), `Displacement` (from the grid crossing to the vertex),
+ * `Iterations`, `StopReason`. Field data: `ScaleFactor` and `Dimension` (as every filter), the
+ * parameters `CellSize`, `Band` (in h), and the counts `BandCells`, `GridVertices`, `Crossings`,
+ * `DroppedVertices`, `Components`, `BoundaryEdges`, `NonManifoldEdges`, `EulerCharacteristic`.
+ *
+ * Errors (vtkErrorMacro, empty output): an empty cloud, h <= 0, invalid parameters, and a band
+ * of more than MaximumNumberOfBandCells cells (refused before it is allocated, with the count).
+ * Threads with vtkSMPTools; reports progress and honours AbortExecute (empty output); the output
+ * is bitwise the same on any number of threads.
+ *
+ * @sa vtkPointSetSurfaceDomainClassifier vtkPointSetSurfaceFieldSampler vtkPointSetSurface
+ */
+
+#ifndef vtkPointSetSurfaceMesher_h
+#define vtkPointSetSurfaceMesher_h
+
+#include "PointSetSurfacesFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class vtkPointSetSurface;
+
+class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceMesher : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkPointSetSurfaceMesher* New();
+  vtkTypeMacro(vtkPointSetSurfaceMesher, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// How crossings are projected (values match vtkPointSetSurfaceProjection's).
+  enum ProcedureType
+  {
+    EXTREMAL = 0,
+    PLANE = 1
+  };
+
+  ///@{
+  /// The surface definition and its parameters (shared with other filters). A default one exists.
+  virtual void SetSurface(vtkPointSetSurface*);
+  vtkGetObjectMacro(Surface, vtkPointSetSurface);
+  ///@}
+
+  /// The h used by the last update (0 before).
+  double GetEffectiveScale() const;
+
+  ///@{
+  /**
+   * Side of the grid's cells, in units of h, within [0.05, 100]. Smaller cells catch finer
+   * features and cost about 1/CellSize^2 more on a surface. Default 1 (with projected vertices,
+   * the mesh's accuracy does not depend on it much: see the README's measurements).
+   */
+  vtkSetClampMacro(CellSize, double, 0.05, 100.0);
+  vtkGetMacro(CellSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * How far from the cloud cells are visited, in units of h, within [0.1, 100]: cells holding a
+   * cloud point, grown by this much in every direction. It must reach past the noise and the
+   * surface's offset from the points. Default 2.
+   */
+  vtkSetClampMacro(Band, double, 0.1, 100.0);
+  vtkGetMacro(Band, double);
+  ///@}
+
+  ///@{
+  /// Move the vertices onto the surface (else leave them at the grid's zero crossings). Default on.
+  vtkSetMacro(ProjectVertices, bool);
+  vtkGetMacro(ProjectVertices, bool);
+  vtkBooleanMacro(ProjectVertices, bool);
+  ///@}
+
+  ///@{
+  /// EXTREMAL (Definition 1, default) or PLANE (the centre-of-mass fast path) for the projections.
+  vtkSetClampMacro(Procedure, int, EXTREMAL, PLANE);
+  vtkGetMacro(Procedure, int);
+  ///@}
+
+  ///@{
+  /**
+   * Domain criteria, as vtkPointSetSurfaceDomainClassifier's: a vertex whose projection ends
+   * farther than MaxDistance * h from every cloud point, or with n more than MaxNormalAngle
+   * degrees off the cloud's own normal there, is outside the domain. Defaults 1 and 30.
+   */
+  vtkSetClampMacro(MaxDistance, double, 1e-6, 1e6);
+  vtkGetMacro(MaxDistance, double);
+  vtkSetClampMacro(MaxNormalAngle, double, 0.0, 90.0);
+  vtkGetMacro(MaxNormalAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * A crossing whose projection moves farther than this many cells is dropped (it was a maximum
+   * of e, or a sign change of g that is not the surface). Within [0.1, 100]. Default 2.
+   */
+  vtkSetClampMacro(MaxVertexTravel, double, 0.1, 100.0);
+  vtkGetMacro(MaxVertexTravel, double);
+  ///@}
+
+  ///@{
+  /**
+   * Cells across which the oriented n turns by more than this many degrees are not contoured:
+   * a seam of the orientation, where g's sign change is not a crossing. Within [0, 180]. Default 60.
+   */
+  vtkSetClampMacro(MaxSeamAngle, double, 0.0, 180.0);
+  vtkGetMacro(MaxSeamAngle, double);
+  ///@}
+
+  ///@{
+  /// Refuse bands of more cells than this (about 60 bytes each). Default 2^24.
+  vtkSetClampMacro(MaximumNumberOfBandCells, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(MaximumNumberOfBandCells, vtkIdType);
+  ///@}
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkPointSetSurfaceMesher();
+  ~vtkPointSetSurfaceMesher() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  vtkPointSetSurface* Surface = nullptr;
+  double CellSize = 1.0;
+  double Band = 2.0;
+  bool ProjectVertices = true;
+  int Procedure = EXTREMAL;
+  double MaxDistance = 1.0;
+  double MaxNormalAngle = 30.0;
+  double MaxVertexTravel = 2.0;
+  double MaxSeamAngle = 60.0;
+  vtkIdType MaximumNumberOfBandCells = vtkIdType(1) << 24;
+
+private:
+  vtkPointSetSurfaceMesher(const vtkPointSetSurfaceMesher&) = delete;
+  void operator=(const vtkPointSetSurfaceMesher&) = delete;
+};
+
+#endif
