@@ -569,6 +569,10 @@ int Mesh(const std::vector<std::string>& args)
     Execute(run, mesher);
     return 0;
   });
+  if (run.verbose)
+  {
+    std::fprintf(stderr, "pss: mesh stages: %s\n", mesher->GetTimingReport());
+  }
   SummarizeMesh(run, mesher->GetOutput());
   Write(run, mesher->GetOutput(), run.output);
   return 0;

@@ -20,7 +20,9 @@
 
 #include "pss/SurfaceMesh.h"
 
+#include <chrono>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 
 vtkStandardNewMacro(vtkPointSetSurfaceMesher);
@@ -176,6 +178,12 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.projection.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.domain.maxDistance = this->MaxDistance;
   options.domain.maxNormalAngle = this->MaxNormalAngle;
+  std::ostringstream timing;
+  auto lap = [&timing, t0 = std::chrono::steady_clock::now()](const char* stage) mutable {
+    const auto t1 = std::chrono::steady_clock::now();
+    timing << (timing.tellp() > 0 ? ", " : "") << stage << " " << std::chrono::duration<double>(t1 - t0).count() << " s";
+    t0 = t1;
+  };
   std::unique_ptr<pss::SurfaceMesher> mesher;
   try
   {
@@ -186,6 +194,7 @@ int vtkPointSetSurfaceMesher::RequestData(
     vtkErrorMacro(<< e.what());
     return 0;
   }
+  lap("band");
   // Progress: the corners' n and g, then the (cheap, sequential) orientation and contouring,
   // then the projections of the crossings.
   if (!pss_vtk::ParallelFor(this, static_cast<vtkIdType>(mesher->gridVertexCount()),
@@ -193,16 +202,22 @@ int vtkPointSetSurfaceMesher::RequestData(
   {
     return 1; // aborted: empty output
   }
+  lap("corners");
   mesher->orient();
+  lap("orient");
   mesher->contour();
+  lap("contour");
   this->UpdateProgress(0.5);
   if (!pss_vtk::ParallelFor(this, static_cast<vtkIdType>(mesher->crossingCount()),
         [&](vtkIdType i) { mesher->classifyCrossing(static_cast<std::size_t>(i)); }, 0.5, 0.98))
   {
     return 1;
   }
+  lap("projection");
   const pss::SurfaceMesh mesh = mesher->finish();
   WriteMesh(mesh, output);
+  lap("output");
+  this->TimingReport = timing.str();
   pss_vtk::AddSurfaceFieldData(output, this->Surface);
   for (const auto& entry : { std::make_pair("CellSize", this->CellSize), std::make_pair("Band", this->Band) })
   {

@@ -43,6 +43,8 @@
 #include "PointSetSurfacesFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
 
+#include <string> // for std::string
+
 class vtkPointSetSurface;
 
 class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceMesher : public vtkPolyDataAlgorithm
@@ -139,6 +141,12 @@ public:
 
   vtkMTimeType GetMTime() override;
 
+  /**
+   * Wall time of the last update's stages, e.g. "band 0.05 s, corners 2.1 s, ...": what `pss mesh
+   * --verbose` prints (kept out of the output so that the output stays bitwise reproducible).
+   */
+  const char* GetTimingReport() const { return this->TimingReport.c_str(); }
+
 protected:
   vtkPointSetSurfaceMesher();
   ~vtkPointSetSurfaceMesher() override;
@@ -156,6 +164,7 @@ protected:
   double MaxVertexTravel = 2.0;
   double MaxSeamAngle = 60.0;
   vtkIdType MaximumNumberOfBandCells = vtkIdType(1) << 24;
+  std::string TimingReport;
 
 private:
   vtkPointSetSurfaceMesher(const vtkPointSetSurfaceMesher&) = delete;

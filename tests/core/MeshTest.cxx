@@ -8,7 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <iostream>
 
 namespace
 {
@@ -24,6 +26,38 @@ pss::SurfaceMesh meshOf(const pss::PointIndex& index, pss::Variant variant, doub
 {
   auto surface = pss::makeSurface(variant, index, pss_test::params(h));
   return pss::extractSurfaceMesh(*surface, options, threads);
+}
+
+void describe(const pss::SurfaceMesh& mesh)
+{
+  const pss::MeshStatistics& st = mesh.statistics;
+  std::cout << "band cells " << st.bandCells << ", vertices " << mesh.points.size() << ", cells "
+            << mesh.triangles.size() + mesh.segments.size() << ", crossings " << st.crossings << ", dropped "
+            << st.droppedVertices << ", seams " << st.seamSimplices << ", components " << st.components
+            << ", boundary " << st.boundaryEdges << ", euler " << st.eulerCharacteristic << ", measure " << st.measure
+            << "\n";
+}
+
+// Points on a square lattice of spacing @p spacing over [0, length] x [-halfWidth, halfWidth] of the
+// half-plane through the y axis at @p angle degrees from the +x axis (in the xz-plane).
+std::vector<Vec3> halfPlane(double angle, double length, double halfWidth, double spacing)
+{
+  std::vector<Vec3> pts;
+  const double a = angle * M_PI / 180.0;
+  for (double s = spacing / 2; s <= length; s += spacing)
+  {
+    for (double y = -halfWidth; y <= halfWidth + 1e-9; y += spacing)
+    {
+      pts.emplace_back(s * std::cos(a), y, s * std::sin(a));
+    }
+  }
+  return pts;
+}
+
+// Distance from x to the nearest of @p cloud's points.
+double distanceToCloud(const pss::PointIndex& index, const Vec3& x)
+{
+  return std::sqrt(index.nearest(x).second);
 }
 
 pss::CloudSpec sphereSpec()
@@ -45,10 +79,7 @@ TEST(Mesh, SphereIsOneClosedAccurateSurface)
   const pss::PointIndex index = indexOf(spec);
   const pss::SurfaceMesh mesh = meshOf(index, pss::Variant::CenterOfMass, 1.0);
   const pss::MeshStatistics& st = mesh.statistics;
-  std::cout << "band cells " << st.bandCells << ", vertices " << mesh.points.size() << ", triangles "
-            << mesh.triangles.size() << ", dropped " << st.droppedVertices << ", seams " << st.seamSimplices
-            << ", components " << st.components << ", boundary " << st.boundaryEdges << ", euler "
-            << st.eulerCharacteristic << ", area " << st.measure << "\n";
+  describe(mesh);
   EXPECT_EQ(st.components, 1u);
   EXPECT_EQ(st.boundaryEdges, 0u);
   EXPECT_EQ(st.nonManifoldEdges, 0u);
@@ -60,4 +91,285 @@ TEST(Mesh, SphereIsOneClosedAccurateSurface)
   }
   EXPECT_LT(worst, 0.05);
   EXPECT_NEAR(st.measure, 4.0 * M_PI * 400.0, 0.01 * 4.0 * M_PI * 400.0);
+}
+
+TEST(Mesh, SameOnOneAndTwoThreads)
+{
+  const pss::PointIndex index = indexOf(sphereSpec());
+  const pss::SurfaceMesh one = meshOf(index, pss::Variant::CenterOfMass, 1.0, {}, 1);
+  const pss::SurfaceMesh two = meshOf(index, pss::Variant::CenterOfMass, 1.0, {}, 2);
+  ASSERT_EQ(one.points.size(), two.points.size());
+  ASSERT_EQ(one.triangles, two.triangles);
+  for (std::size_t i = 0; i < one.points.size(); ++i)
+  {
+    ASSERT_EQ(one.points[i], two.points[i]) << i; // bitwise
+    ASSERT_EQ(one.normals[i], two.normals[i]) << i;
+  }
+}
+
+TEST(Mesh, NormalsPointOutwardAndTrianglesTurnAboutThem)
+{
+  const pss::PointIndex index = indexOf(sphereSpec());
+  const pss::SurfaceMesh mesh = meshOf(index, pss::Variant::CenterOfMass, 1.0);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+  {
+    ASSERT_GT(mesh.normals[i].dot(mesh.points[i].normalized()), 0.99) << i; // the sphere's outward normal
+  }
+  for (const auto& t : mesh.triangles)
+  {
+    const Vec3 face = (mesh.points[t[1]] - mesh.points[t[0]]).cross(mesh.points[t[2]] - mesh.points[t[0]]);
+    ASSERT_GT(face.dot(mesh.normals[t[0]]), 0.0);
+  }
+}
+
+TEST(Mesh, NoisySquarePatchEndsAtItsBorder)
+{
+  pss::CloudSpec spec;
+  spec.scene = pss::Scene::Plane;
+  spec.dimension = 3;
+  spec.size = 20.0; // a 20 h square, h = 1
+  spec.count = 4000;
+  spec.noise = 0.02;
+  const pss::PointIndex index = indexOf(spec);
+  const pss::SurfaceMesh mesh = meshOf(index, pss::Variant::CenterOfMass, 1.0);
+  describe(mesh);
+  EXPECT_EQ(mesh.statistics.components, 1u);
+  EXPECT_EQ(mesh.statistics.nonManifoldEdges, 0u);
+  double worstInterior = 0.0;
+  Vec3 lo = Vec3::Constant(1e300);
+  Vec3 hi = Vec3::Constant(-1e300);
+  for (const Vec3& p : mesh.points)
+  {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+    if (std::abs(p.x()) < 9.0 && std::abs(p.y()) < 9.0)
+    {
+      worstInterior = std::max(worstInterior, std::abs(p.z()));
+    }
+  }
+  std::cout << "interior off the plane " << worstInterior << " h; x in [" << lo.x() << ", " << hi.x() << "], y in ["
+            << lo.y() << ", " << hi.y() << "]\n";
+  EXPECT_LT(worstInterior, 0.02);
+  // The border: no sheet extrapolated beyond the patch, and no part of the patch left out.
+  for (int a = 0; a < 2; ++a)
+  {
+    EXPECT_LT(hi[a], 10.0 + 1.0);
+    EXPECT_GT(lo[a], -10.0 - 1.0);
+    EXPECT_GT(hi[a], 10.0 - 1.0);
+    EXPECT_LT(lo[a], -10.0 + 1.0);
+  }
+}
+
+TEST(Mesh, TwoSheetsFourHApartStayApart)
+{
+  pss::CloudSpec spec;
+  spec.scene = pss::Scene::TwoSheets;
+  spec.dimension = 3;
+  spec.size = 16.0;
+  spec.count = 5000;
+  spec.gap = 4.0;
+  const pss::PointIndex index = indexOf(spec);
+  for (pss::Variant v : { pss::Variant::CenterOfMass, pss::Variant::LevinMLS, pss::Variant::NormalizedMLS })
+  {
+    pss::MeshOptions options;
+    options.cellSize = v == pss::Variant::CenterOfMass ? 1.0 : 0.5;
+    const pss::SurfaceMesh mesh = meshOf(index, v, 1.0, options);
+    SCOPED_TRACE(pss::variantName(v));
+    describe(mesh);
+    EXPECT_EQ(mesh.statistics.components, 2u);
+    for (const auto& t : mesh.triangles)
+    {
+      // Every triangle lies on one sheet: no vertex between them, none bridging.
+      const double side = mesh.points[t[0]].z();
+      for (std::uint32_t k : t)
+      {
+        ASSERT_NEAR(std::abs(mesh.points[k].z()), 2.0, 0.05);
+        ASSERT_GT(mesh.points[k].z() * side, 0.0);
+      }
+    }
+  }
+}
+
+TEST(Mesh, TwoSheetsOneAndAHalfHApart)
+{
+  // 1.5 h apart, each sheet's weights reach the other. Measured (h = 1): center of mass keeps two
+  // sheets, every vertex at |z| in [0.70, 0.95] (pulled up to 0.2 h outward), fragmented where n is
+  // undefined between them; Levin's and the normalized MLS (cell 0.5 h, within Levin's narrow
+  // domain) also give pieces near the middle plane, on neither sheet.
+  pss::CloudSpec spec;
+  spec.scene = pss::Scene::TwoSheets;
+  spec.dimension = 3;
+  spec.size = 16.0;
+  spec.count = 5000;
+  spec.gap = 1.5;
+  const pss::PointIndex index = indexOf(spec);
+  const pss::SurfaceMesh com = meshOf(index, pss::Variant::CenterOfMass, 1.0);
+  describe(com);
+  EXPECT_GT(com.triangles.size(), 1000u);
+  for (const auto& t : com.triangles)
+  {
+    const double side = com.points[t[0]].z();
+    for (std::uint32_t k : t)
+    {
+      ASSERT_GT(std::abs(com.points[k].z()), 0.5);   // never between the sheets
+      ASSERT_LT(std::abs(com.points[k].z()), 1.0);
+      ASSERT_GT(com.points[k].z() * side, 0.0);      // no triangle bridges them
+    }
+  }
+  for (pss::Variant v : { pss::Variant::LevinMLS, pss::Variant::NormalizedMLS })
+  {
+    pss::MeshOptions options;
+    options.cellSize = 0.5;
+    const pss::SurfaceMesh mesh = meshOf(index, v, 1.0, options);
+    SCOPED_TRACE(pss::variantName(v));
+    describe(mesh);
+    const auto middle = std::count_if(
+      mesh.points.begin(), mesh.points.end(), [](const Vec3& p) { return std::abs(p.z()) < 0.375; });
+    EXPECT_GT(middle, 0); // a spurious piece between the sheets: the MLS definitions' failure here
+  }
+}
+
+namespace
+{
+
+// Two half-planes with a common edge along the y axis, @p angle degrees apart.
+pss::PointIndex dihedralCorner(double angle)
+{
+  std::vector<Vec3> pts = halfPlane(0.0, 8.0, 4.0, 0.4);
+  const std::vector<Vec3> other = halfPlane(angle, 8.0, 4.0, 0.4);
+  pts.insert(pts.end(), other.begin(), other.end());
+  return pss::PointIndex(pts, 3);
+}
+
+double farthestFromCloud(const pss::SurfaceMesh& mesh, const pss::PointIndex& cloud)
+{
+  double far = 0.0;
+  for (const auto& t : mesh.triangles)
+  {
+    const Vec3 centre = (mesh.points[t[0]] + mesh.points[t[1]] + mesh.points[t[2]]) / 3.0;
+    far = std::max(far, distanceToCloud(cloud, centre));
+    for (std::uint32_t k : t)
+    {
+      far = std::max(far, distanceToCloud(cloud, mesh.points[k]));
+    }
+  }
+  return far;
+}
+
+} // namespace
+
+TEST(Mesh, DihedralCornersStayOnTheCloud)
+{
+  // Measured (h = 1): the integral definition's mesh stays within 0.48 h (90 degrees) and 0.34 h
+  // (60 degrees) of the cloud. Center of mass rounds the edge off: its mesh reaches the domain
+  // test's limit, MaxDistance = 1 h, and no farther.
+  for (double angle : { 90.0, 60.0 })
+  {
+    SCOPED_TRACE(angle);
+    const pss::PointIndex corner = dihedralCorner(angle);
+    const pss::SurfaceMesh integral = meshOf(corner, pss::Variant::Integral, 1.0);
+    describe(integral);
+    // At 60 degrees n turns 120 degrees across the edge: a seam, so each face is its own piece.
+    const std::size_t pieces = angle == 90.0 ? 1u : 2u;
+    EXPECT_EQ(integral.statistics.components, pieces);
+    EXPECT_LT(farthestFromCloud(integral, corner), 2.0);
+    const pss::SurfaceMesh com = meshOf(corner, pss::Variant::CenterOfMass, 1.0);
+    describe(com);
+    EXPECT_EQ(com.statistics.components, pieces);
+    const double comFar = farthestFromCloud(com, corner);
+    EXPECT_LT(comFar, 1.0 + 1e-6);
+    EXPECT_GT(comFar, 0.5); // the rounded edge: off the cloud, unlike the integral's
+  }
+}
+
+TEST(Mesh, CircleIn2DIsOneClosedPolyline)
+{
+  // Evenly spaced (a random circle has gaps wider than 2 h, rightly outside the domain).
+  const pss::PointIndex index(pss_test::circleArc(20.0, 0.0, M_PI * 20.0, 0.25), 2);
+  for (pss::Variant v : pss_test::allVariants())
+  {
+    SCOPED_TRACE(pss::variantName(v));
+    pss::MeshOptions options;
+    options.cellSize = v == pss::Variant::LevinMLS || v == pss::Variant::NormalizedMLS ? 0.25 : 1.0;
+    const pss::SurfaceMesh mesh = meshOf(index, v, 1.0, options);
+    describe(mesh);
+    EXPECT_TRUE(mesh.triangles.empty());
+    EXPECT_EQ(mesh.statistics.components, 1u);
+    EXPECT_EQ(mesh.statistics.boundaryEdges, 0u); // no polyline ends
+    EXPECT_EQ(mesh.statistics.nonManifoldEdges, 0u);
+    EXPECT_NEAR(mesh.statistics.measure, 2.0 * M_PI * 20.0, 0.01 * 2.0 * M_PI * 20.0);
+    for (const Vec3& p : mesh.points)
+    {
+      ASSERT_EQ(p.z(), 0.0);
+      ASSERT_NEAR(p.norm(), 20.0, 0.05);
+    }
+  }
+}
+
+TEST(Mesh, OpenSegmentIn2DHasTwoEnds)
+{
+  const pss::PointIndex index(pss_test::lineCloud(10.0, 0.25), 2);
+  const pss::SurfaceMesh mesh = meshOf(index, pss::Variant::CenterOfMass, 1.0);
+  describe(mesh);
+  EXPECT_EQ(mesh.statistics.components, 1u);
+  EXPECT_EQ(mesh.statistics.boundaryEdges, 2u);
+  for (const Vec3& p : mesh.points)
+  {
+    ASSERT_NEAR(p.y(), 0.0, 1e-9);
+    ASSERT_LE(std::abs(p.x()), 10.0 + 1.0); // the domain test ends it within 1 h of the last point
+  }
+}
+
+TEST(MeshBadInput, RefusedBeforeAllocating)
+{
+  const pss::PointIndex index(pss_test::planeCloud(5.0, 0.25), 3);
+  auto surface = pss::makeSurface(pss::Variant::CenterOfMass, index, pss_test::params(1.0));
+  auto refused = [&](pss::MeshOptions o, const std::string& text) {
+    try
+    {
+      pss::SurfaceMesher mesher(*surface, o);
+      ADD_FAILURE() << "accepted; expected: " << text;
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    }
+  };
+  pss::MeshOptions o;
+  o.cellSize = 0.0;
+  refused(o, "cell size");
+  o.cellSize = -1.0;
+  refused(o, "cell size");
+  o.cellSize = std::nan("");
+  refused(o, "cell size");
+  o = {};
+  o.band = 0.0;
+  refused(o, "band");
+  o = {};
+  o.cellSize = 1e-7; // a band 10^7 cells wide
+  refused(o, "cells wide");
+  o.band = 1e-6; // 10^8 cells along each axis
+  refused(o, "more than 2^20 along an axis");
+  o = {};
+  o.cellSize = 1e-3; // about 10^10 band cells on a 10 h square: counted, not allocated
+  refused(o, "more than");
+  o = {};
+  o.maxBandCells = 100;
+  refused(o, "the limit is 100");
+}
+
+TEST(MeshBadInput, DegenerateCloudsGiveEmptyMeshes)
+{
+  // One point, or collinear points in 3D: n (center of mass) is undefined everywhere, so there is
+  // no crossing and the mesh is empty, without an error.
+  const pss::PointIndex one(std::vector<Vec3>{ Vec3(1.0, 2.0, 3.0) }, 3);
+  const pss::SurfaceMesh m1 = meshOf(one, pss::Variant::CenterOfMass, 1.0);
+  EXPECT_TRUE(m1.points.empty());
+  EXPECT_TRUE(m1.triangles.empty());
+  EXPECT_GT(m1.statistics.undefinedVertices, 0u);
+  std::vector<Vec3> line = pss_test::lineCloud(5.0, 0.25);
+  const pss::PointIndex collinear(line, 3);
+  const pss::SurfaceMesh m2 = meshOf(collinear, pss::Variant::CenterOfMass, 1.0);
+  EXPECT_TRUE(m2.triangles.empty());
+  EXPECT_EQ(m2.statistics.undefinedVertices, m2.statistics.gridVertices);
 }

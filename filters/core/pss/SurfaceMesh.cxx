@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 #include <queue>
 #include <sstream>
@@ -171,14 +172,9 @@ private:
   std::vector<std::size_t> Parent;
 };
 
-constexpr std::size_t NoVertex = static_cast<std::size_t>(-1);
+constexpr std::uint32_t NoIndex = static_cast<std::uint32_t>(-1);
 
 } // namespace
-
-std::size_t SurfaceMesher::EdgeHash::operator()(const std::pair<Key, Key>& e) const
-{
-  return static_cast<std::size_t>(e.first * 0x9E3779B97F4A7C15ULL ^ (e.second + 0x632BE59BD9B4E019ULL));
-}
 
 SurfaceMesher::SurfaceMesher(const SurfaceDefinition& surface, const MeshOptions& options)
   : Surface(surface)
@@ -211,10 +207,43 @@ Vec3 SurfaceMesher::positionOf(Key k) const
   return x;
 }
 
-std::size_t SurfaceMesher::vertexIndex(Key k) const
+void SurfaceMesher::linkNeighbours()
 {
-  const auto it = std::lower_bound(Keys.begin(), Keys.end(), k);
-  return it != Keys.end() && *it == k ? static_cast<std::size_t>(it - Keys.begin()) : NoVertex;
+  // Keys + stride is sorted like Keys, so one merge finds every neighbour along an axis.
+  const std::size_t n = Keys.size();
+  Key stride = 1;
+  for (int a = 0; a < Dimension; ++a)
+  {
+    std::vector<std::uint32_t>& up = Step[2 * a];
+    std::vector<std::uint32_t>& down = Step[2 * a + 1];
+    up.assign(n, NoIndex);
+    down.assign(n, NoIndex);
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const Key target = Keys[i] + stride;
+      while (j < n && Keys[j] < target)
+      {
+        ++j;
+      }
+      if (j < n && Keys[j] == target)
+      {
+        up[i] = static_cast<std::uint32_t>(j);
+        down[j] = static_cast<std::uint32_t>(i);
+      }
+    }
+    stride *= static_cast<Key>(Size[a]);
+  }
+  CellCorner.resize(Cells.size());
+  std::size_t j = 0;
+  for (std::size_t c = 0; c < Cells.size(); ++c)
+  {
+    while (Keys[j] < Cells[c])
+    {
+      ++j;
+    }
+    CellCorner[c] = static_cast<std::uint32_t>(j);
+  }
 }
 
 void SurfaceMesher::buildBand()
@@ -252,7 +281,9 @@ void SurfaceMesher::buildBand()
     Coords c{ { 0, 0, 0 } };
     for (int a = 0; a < Dimension; ++a)
     {
-      c[a] = std::clamp(static_cast<long long>(std::floor((index.point(i)[a] - Origin[a]) / Cell)), 0LL, Size[a] - 2);
+      // Clamped to the cells the axis lengths were sized for: rounding in p - Origin may add one.
+      c[a] = std::clamp(static_cast<long long>(std::floor((index.point(i)[a] - Origin[a]) / Cell)), reach + 1,
+        Size[a] - reach - 2);
     }
     occupied[i] = keyOf(c);
   }
@@ -262,6 +293,7 @@ void SurfaceMesher::buildBand()
   Cells = widen(std::move(occupied), Size, Dimension, reach, reach, Options.maxBandCells, "band");
   Keys = widen(Cells, Size, Dimension, 0, 1, 2 * Options.maxBandCells, "band's corners");
   Values.assign(Keys.size(), CornerValue{});
+  linkNeighbours();
   Statistics.bandCells = Cells.size();
   Statistics.gridVertices = Keys.size();
 }
@@ -289,22 +321,12 @@ void SurfaceMesher::orient()
   using Edge = std::tuple<double, std::uint32_t, std::uint32_t>;
   std::priority_queue<Edge> heap;
   auto pushNeighbours = [&](std::size_t v) {
-    const Coords c = coordsOf(Keys[v]);
-    for (int a = 0; a < Dimension; ++a)
+    for (int k = 0; k < 2 * Dimension; ++k)
     {
-      for (int step : { -1, 1 })
+      const std::uint32_t w = Step[k][v];
+      if (w != NoIndex && Values[w].defined && Sign[w] == 0)
       {
-        Coords d = c;
-        d[a] += step;
-        if (d[a] < 0 || d[a] >= Size[a])
-        {
-          continue;
-        }
-        const std::size_t w = vertexIndex(keyOf(d));
-        if (w != NoVertex && Values[w].defined && Sign[w] == 0)
-        {
-          heap.emplace(std::abs(Values[v].n.dot(Values[w].n)), static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(v));
-        }
+        heap.emplace(std::abs(Values[v].n.dot(Values[w].n)), w, static_cast<std::uint32_t>(v));
       }
     }
   };
@@ -332,16 +354,12 @@ void SurfaceMesher::orient()
   }
 }
 
-std::uint32_t SurfaceMesher::crossingOn(std::size_t a, std::size_t b)
+std::uint32_t SurfaceMesher::crossingOn(std::uint32_t a, std::uint32_t b, int direction)
 {
-  if (Keys[a] > Keys[b])
+  std::uint32_t& slot = CrossingOfEdge[7 * static_cast<std::size_t>(a) + static_cast<std::size_t>(direction - 1)];
+  if (slot != NoIndex)
   {
-    std::swap(a, b);
-  }
-  const auto found = CrossingOfEdge.find({ Keys[a], Keys[b] });
-  if (found != CrossingOfEdge.end())
-  {
-    return found->second;
+    return slot;
   }
   const double fa = Values[a].g * Sign[a];
   const double fb = Values[b].g * Sign[b];
@@ -350,19 +368,26 @@ std::uint32_t SurfaceMesher::crossingOn(std::size_t a, std::size_t b)
   Crossing c;
   c.point = positionOf(Keys[a]) + t * (positionOf(Keys[b]) - positionOf(Keys[a]));
   c.reference = (t < 0.5 ? Values[a].n * Sign[a] : Values[b].n * Sign[b]);
-  const auto id = static_cast<std::uint32_t>(Crossings.size());
+  // Minimum or maximum of e along n (Eq. 2's g rises through a minimum): read off the edge when it
+  // runs clearly along n, not across it.
+  const Vec3 edge = (positionOf(Keys[b]) - positionOf(Keys[a])).normalized();
+  const double along = edge.dot(Values[a].n * Sign[a] + Values[b].n * Sign[b]) / 2.0;
+  if (std::abs(along) > 0.2)
+  {
+    c.type = (fb - fa) * along > 0.0 ? ExtremumType::Minimum : ExtremumType::Maximum;
+  }
+  slot = static_cast<std::uint32_t>(Crossings.size());
   Crossings.push_back(std::move(c));
-  CrossingOfEdge.emplace(std::make_pair(Keys[a], Keys[b]), id);
-  return id;
+  return slot;
 }
 
-void SurfaceMesher::contourSimplex(const std::array<std::size_t, 4>& corners, int count)
+void SurfaceMesher::contourSimplex(const std::array<std::uint32_t, 4>& corners, const std::array<int, 4>& bits, int count)
 {
   std::array<double, 4> f{};
   int positives = 0;
   for (int k = 0; k < count; ++k)
   {
-    if (corners[k] == NoVertex || !Values[corners[k]].defined)
+    if (!Values[corners[k]].defined)
     {
       return;
     }
@@ -387,12 +412,15 @@ void SurfaceMesher::contourSimplex(const std::array<std::size_t, 4>& corners, in
       }
     }
   }
-  // The side where the oriented g is positive: the surface's cells are wound around it.
-  Vec3 towardPositive = Vec3::Zero();
+  // From the negative corners' centroid to the positive ones': the surface's cells are wound
+  // counter-clockwise about it.
+  Vec3 positiveSum = Vec3::Zero();
+  Vec3 negativeSum = Vec3::Zero();
   for (int k = 0; k < count; ++k)
   {
-    towardPositive += (f[k] > 0.0 ? 1.0 : -1.0) * positionOf(Keys[corners[k]]);
+    (f[k] > 0.0 ? positiveSum : negativeSum) += positionOf(Keys[corners[k]]);
   }
+  const Vec3 towardPositive = positiveSum / positives - negativeSum / (count - positives);
   std::array<int, 4> pos{};
   std::array<int, 4> neg{};
   int np = 0;
@@ -401,7 +429,12 @@ void SurfaceMesher::contourSimplex(const std::array<std::size_t, 4>& corners, in
   {
     (f[k] > 0.0 ? pos[np++] : neg[nn++]) = k;
   }
-  auto cross = [&](int p, int q) { return crossingOn(corners[p], corners[q]); };
+  // The simplex's corners go up one axis at a time, so the lower end of an edge is the earlier one.
+  auto cross = [&](int p, int q) {
+    const int lo = std::min(p, q);
+    const int hi = std::max(p, q);
+    return crossingOn(corners[lo], corners[hi], bits[hi] & ~bits[lo]);
+  };
   if (count == 3)
   {
     // 2D: one segment between the two edges that leave the lone corner.
@@ -465,64 +498,65 @@ void SurfaceMesher::contour()
   {
     orders.push_back(axes);
   } while (std::next_permutation(axes.begin(), axes.begin() + Dimension));
-  std::array<std::size_t, 8> corner{};
-  for (const Key cell : Cells)
+  CrossingOfEdge.assign(7 * Keys.size(), NoIndex);
+  std::array<std::uint32_t, 8> corner{};
+  for (const std::uint32_t lowest : CellCorner)
   {
-    const Coords c0 = coordsOf(cell);
+    // Every corner of a band cell is a grid vertex, so these steps never fall off the band.
     for (int bits = 0; bits < cornersPerCell; ++bits)
     {
-      const Coords c{ { c0[0] + (bits & 1), c0[1] + ((bits >> 1) & 1), c0[2] + ((bits >> 2) & 1) } };
-      corner[bits] = vertexIndex(keyOf(c));
+      std::uint32_t v = lowest;
+      for (int a = 0; a < Dimension && v != NoIndex; ++a)
+      {
+        v = (bits >> a) & 1 ? Step[2 * a][v] : v;
+      }
+      if (v == NoIndex)
+      {
+        throw std::logic_error("SurfaceMesher: a band cell lacks a corner (a bug: please report it)");
+      }
+      corner[bits] = v;
     }
     for (const auto& order : orders)
     {
-      std::array<std::size_t, 4> simplex{};
-      int bits = 0;
+      std::array<std::uint32_t, 4> simplex{};
+      std::array<int, 4> bits{};
       simplex[0] = corner[0];
       for (int k = 0; k < Dimension; ++k)
       {
-        bits |= 1 << order[k];
-        simplex[k + 1] = corner[bits];
+        bits[k + 1] = bits[k] | (1 << order[k]);
+        simplex[k + 1] = corner[bits[k + 1]];
       }
-      contourSimplex(simplex, Dimension + 1);
+      contourSimplex(simplex, bits, Dimension + 1);
     }
   }
   Statistics.crossings = Crossings.size();
-  CrossingOfEdge.clear();
+  Statistics.undefinedVertices = static_cast<std::size_t>(
+    std::count_if(Values.begin(), Values.end(), [](const CornerValue& v) { return !v.defined; }));
+  // What only the grid stages need goes before the projections, the stage with the largest state.
+  Evidence.assign(Crossings.size(), DomainEvidence{});
+  CrossingOfEdge = {};
+  Step = {};
+  CellCorner = {};
+  Values = {};
 }
 
 void SurfaceMesher::classifyCrossing(std::size_t i)
 {
-  Crossings[i].evidence = classifyStart(Surface, Crossings[i].point, Options.projection, Options.domain);
+  Evidence[i] = classifyStart(Surface, Crossings[i].point, Options.projection, Options.domain);
 }
 
 namespace
 {
 
-template <std::size_t K>
-bool allKept(const std::array<std::uint32_t, K>& cell, const std::vector<char>& keep)
-{
-  return std::all_of(cell.begin(), cell.end(), [&](std::uint32_t v) { return keep[v] != 0; });
-}
-
-// Drops the cells with a dropped vertex and renumbers the kept vertices in their old order.
-template <std::size_t K>
+// Keeps the cells @p keep accepts and renumbers the vertices they use, in their old order
+// (newIndex: old vertex -> new, or -1 when unused).
+template <std::size_t K, class Keep>
 std::vector<std::array<std::uint32_t, K>> keepCells(const std::vector<std::array<std::uint32_t, K>>& cells,
-  const std::vector<char>& keep, std::vector<std::uint32_t>& newIndex, std::size_t& dropped)
+  std::size_t vertices, Keep&& keep, std::vector<std::uint32_t>& newIndex)
 {
   std::vector<std::array<std::uint32_t, K>> out;
-  for (const auto& cell : cells)
-  {
-    if (allKept(cell, keep))
-    {
-      out.push_back(cell);
-    }
-    else
-    {
-      ++dropped;
-    }
-  }
-  std::vector<char> used(keep.size(), 0);
+  std::copy_if(cells.begin(), cells.end(), std::back_inserter(out), keep);
+  std::vector<char> used(vertices, 0);
   for (const auto& cell : out)
   {
     for (std::uint32_t v : cell)
@@ -622,36 +656,76 @@ SurfaceMesh SurfaceMesher::finish()
   for (std::size_t i = 0; i < n; ++i)
   {
     const Crossing& c = Crossings[i];
-    const bool inDomain = c.evidence.label == DomainLabel::InDomain;
-    const bool near = (c.evidence.projection.point - c.point).norm() <= Options.maxVertexTravel * Cell;
-    keep[i] = inDomain && near ? 1 : 0;
+    const DomainEvidence& ev = Evidence[i];
+    const bool inDomain = ev.label == DomainLabel::InDomain;
+    const bool near = (ev.projection.point - c.point).norm() <= Options.maxVertexTravel * Cell;
+    const ExtremumType unwanted = Options.projection.seekMaxima ? ExtremumType::Minimum : ExtremumType::Maximum;
+    const bool wanted = c.type != unwanted;
+    Statistics.maximumCrossings += wanted ? 0 : 1;
+    keep[i] = inDomain && near && wanted ? 1 : 0;
     Statistics.droppedVertices += keep[i] ? 0 : 1;
   }
+  std::vector<Vec3> point(n);
+  std::vector<Vec3> normal(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Direction& d = Evidence[i].projection.direction;
+    point[i] = Options.projectVertices ? Evidence[i].projection.point : Crossings[i].point;
+    normal[i] = d.defined ? (d.n.dot(Crossings[i].reference) < 0.0 ? Vec3(-d.n) : d.n) : Vec3::Zero();
+  }
+  // A cell whose own normal (from its final vertices) is more than maxSeamAngle off its vertices'
+  // normals is folded over, or bridges two sheets whose crossings projected apart: dropped.
+  // Degenerate cells (a tiny area or length) have no normal to judge and are kept.
+  const double foldCos = std::cos(Options.maxSeamAngle * M_PI / 180.0);
+  const double tiny = 1e-6 * Cell;
+  auto unfolded = [&](const Vec3& face, const Vec3& vertexNormals) {
+    return face.norm() <= tiny * (Dimension == 3 ? tiny : 1.0) ||
+      face.dot(vertexNormals) >= foldCos * face.norm() * vertexNormals.norm();
+  };
+  std::size_t folded = 0;
+  auto keepTriangle = [&](const std::array<std::uint32_t, 3>& t) {
+    if (!keep[t[0]] || !keep[t[1]] || !keep[t[2]])
+    {
+      return false;
+    }
+    const Vec3 face = (point[t[1]] - point[t[0]]).cross(point[t[2]] - point[t[0]]);
+    const bool ok = unfolded(face, normal[t[0]] + normal[t[1]] + normal[t[2]]);
+    folded += ok ? 0 : 1;
+    return ok;
+  };
+  auto keepSegment = [&](const std::array<std::uint32_t, 2>& s) {
+    if (!keep[s[0]] || !keep[s[1]])
+    {
+      return false;
+    }
+    const Vec3 d = point[s[1]] - point[s[0]];
+    const bool ok = unfolded(Vec3(-d.y(), d.x(), 0.0), normal[s[0]] + normal[s[1]]);
+    folded += ok ? 0 : 1;
+    return ok;
+  };
   std::vector<std::uint32_t> newIndex(n);
   if (Dimension == 3)
   {
-    mesh.triangles = keepCells(Triangles, keep, newIndex, Statistics.droppedSimplices);
+    mesh.triangles = keepCells(Triangles, n, keepTriangle, newIndex);
+    Statistics.droppedSimplices = Triangles.size() - mesh.triangles.size();
   }
   else
   {
-    mesh.segments = keepCells(Segments, keep, newIndex, Statistics.droppedSimplices);
+    mesh.segments = keepCells(Segments, n, keepSegment, newIndex);
+    Statistics.droppedSimplices = Segments.size() - mesh.segments.size();
   }
+  Statistics.foldedSimplices = folded;
   for (std::size_t i = 0; i < n; ++i)
   {
-    if (newIndex[i] == static_cast<std::uint32_t>(-1))
+    if (newIndex[i] != static_cast<std::uint32_t>(-1))
     {
-      continue;
+      mesh.points.push_back(point[i]);
+      mesh.normals.push_back(normal[i]);
+      mesh.evidence.push_back(std::move(Evidence[i]));
+      mesh.crossings.push_back(Crossings[i].point);
     }
-    const Crossing& c = Crossings[i];
-    const Direction& d = c.evidence.projection.direction;
-    mesh.points.push_back(Options.projectVertices ? c.evidence.projection.point : c.point);
-    mesh.normals.push_back(d.defined ? (d.n.dot(c.reference) < 0.0 ? Vec3(-d.n) : d.n) : Vec3::Zero());
-    mesh.evidence.push_back(c.evidence);
-    mesh.crossings.push_back(c.point);
   }
   mesh.statistics = Statistics;
-  mesh.statistics.undefinedVertices = static_cast<std::size_t>(
-    std::count_if(Values.begin(), Values.end(), [](const CornerValue& v) { return !v.defined; }));
   countTopology(mesh);
   return mesh;
 }

@@ -25,8 +25,10 @@
  *    of g at maxima of e, on spurious sheets, or outside the domain project far away or are not
  *    InDomain.
  * 6. finish: a simplex is kept only when all its vertices are InDomain and their projections
- *    travelled at most maxVertexTravel cells; vertices move to their projections (projectVertices)
- *    and the unused ones are dropped. The mesh's topology is then counted.
+ *    travelled at most maxVertexTravel cells, and when its own normal, once its vertices have
+ *    moved to their projections (projectVertices), is within maxSeamAngle of its vertices' n (a
+ *    cell whose crossings projected onto two different sheets, or folded over, is not). The
+ *    unused vertices are dropped and the mesh's topology is counted.
  * Every stage is deterministic: the result does not depend on the number of threads.
  */
 #pragma once
@@ -38,7 +40,6 @@
 #include <array>
 #include <cstdint>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace pss
@@ -50,9 +51,17 @@ struct MeshOptions
   double band = 2.0;            ///< how far from the cloud cells are visited, in units of h (> 0)
   bool projectVertices = true;  ///< move the vertices onto the surface (else keep the grid crossings)
   double maxVertexTravel = 2.0; ///< in cells: a crossing whose projection moves farther is dropped
-  double maxSeamAngle = 60.0;   ///< degrees: simplices across which oriented n turns more are skipped
+  double maxSeamAngle = 60.0;   ///< degrees: simplices across which oriented n turns more are skipped, and
+                                ///< cells whose normal is this far off their vertices' n are dropped
   std::size_t maxBandCells = std::size_t(1) << 24; ///< refuse larger bands (about 60 bytes a cell)
-  ProjectionOptions projection;  ///< how crossings are projected (Definition 1 by default)
+  /// How crossings are projected (Definition 1 by default). The tolerance is 1e-5 h, not the
+  /// projection's 1e-6 h: vertices need no better, and the integral energy's steps can hover
+  /// around 1e-6 h until the iteration limit (measured on a circle in 2D).
+  ProjectionOptions projection = [] {
+    ProjectionOptions p;
+    p.tolerance = 1e-5;
+    return p;
+  }();
   DomainThresholds domain;       ///< what counts as InDomain (the classifier's thresholds)
   void validate() const;         ///< throws std::invalid_argument
 };
@@ -65,8 +74,10 @@ struct MeshStatistics
   std::size_t undefinedVertices = 0;  ///< corners where n is undefined
   std::size_t seamSimplices = 0;      ///< simplices skipped because n turns too much across them
   std::size_t crossings = 0;          ///< zero crossings of g found (before the domain test)
-  std::size_t droppedVertices = 0;    ///< crossings not InDomain or that travelled too far
-  std::size_t droppedSimplices = 0;   ///< triangles (segments) dropped with them
+  std::size_t droppedVertices = 0;    ///< crossings not InDomain, travelled too far, or of the other extremum
+  std::size_t maximumCrossings = 0;   ///< of which: g falls along n there (a maximum of e; a minimum with seekMaxima)
+  std::size_t droppedSimplices = 0;   ///< triangles (segments) dropped, with those vertices or folded
+  std::size_t foldedSimplices = 0;    ///< of which: cells turned more than maxSeamAngle off their vertices' n
   std::size_t components = 0;         ///< connected pieces of the result
   std::size_t boundaryEdges = 0;      ///< edges of one triangle (3D); polyline ends (2D)
   std::size_t nonManifoldEdges = 0;   ///< edges of three or more triangles (3D); vertices of 3+ segments (2D)
@@ -123,20 +134,16 @@ private:
   {
     Vec3 point = Vec3::Zero();
     Vec3 reference = Vec3::Zero(); ///< oriented n of the grid edge's end, to orient the result
-    DomainEvidence evidence;
-  };
-  struct EdgeHash
-  {
-    std::size_t operator()(const std::pair<Key, Key>& e) const;
+    ExtremumType type = ExtremumType::None; ///< how g changes along n here (None: edge across n)
   };
 
   Key keyOf(const std::array<long long, 3>& c) const;
   std::array<long long, 3> coordsOf(Key k) const;
   Vec3 positionOf(Key k) const;
-  std::size_t vertexIndex(Key k) const; ///< index in Keys, or npos
   void buildBand();
-  void contourSimplex(const std::array<std::size_t, 4>& corners, int count);
-  std::uint32_t crossingOn(std::size_t a, std::size_t b);
+  void linkNeighbours();
+  void contourSimplex(const std::array<std::uint32_t, 4>& corners, const std::array<int, 4>& bits, int count);
+  std::uint32_t crossingOn(std::uint32_t lower, std::uint32_t upper, int direction);
 
   const SurfaceDefinition& Surface;
   MeshOptions Options;
@@ -147,9 +154,15 @@ private:
   std::vector<Key> Cells;          ///< band cells, by the key of their lowest corner, sorted
   std::vector<Key> Keys;           ///< their corners, sorted
   std::vector<CornerValue> Values; ///< per corner
+  /// Step[2a][i] / Step[2a+1][i]: the corner one cell up / down axis a from corner i (or none).
+  std::array<std::vector<std::uint32_t>, 6> Step;
+  std::vector<std::uint32_t> CellCorner; ///< per band cell: its lowest corner
   std::vector<signed char> Sign;   ///< per corner: +1 / -1 after orient(), 0 where undefined
   std::vector<Crossing> Crossings;
-  std::unordered_map<std::pair<Key, Key>, std::uint32_t, EdgeHash> CrossingOfEdge;
+  std::vector<DomainEvidence> Evidence; ///< per crossing, from classifyCrossing()
+  /// CrossingOfEdge[7 i + d - 1]: the crossing on the edge from corner i along the axes of bit
+  /// mask d (Kuhn's simplices only have edges that go up along one to three axes), or none.
+  std::vector<std::uint32_t> CrossingOfEdge;
   std::vector<std::array<std::uint32_t, 3>> Triangles;
   std::vector<std::array<std::uint32_t, 2>> Segments;
   MeshStatistics Statistics;
