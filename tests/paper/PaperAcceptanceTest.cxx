@@ -2,6 +2,7 @@
 // The acceptance numbers of the main demo (issue "Reproduce the paper"): each bound is one test.
 // The scenes and measurements are the demo's own (examples/PaperScenes.h), so what passes here is
 // what pss-paper-figures prints in its table.
+#include "PaperMeasures.h"
 #include "PaperScenes.h"
 
 #include "vtkDataArray.h"
@@ -13,6 +14,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -244,4 +247,64 @@ TEST(PaperGallery, ReadmeShowsEveryFigureWithAClaimAndAMeasurement)
       EXPECT_NE(around.find("Measured:"), std::string::npos) << image;
     }
   }
+}
+
+// ---- Figure 3: two planes through x above a dense line -------------------------------------------
+
+TEST(PaperPlanes, PerpendicularPlaneWinsAtHOverSqrt2AtEveryColumn)
+{
+  const Scene line = MakeLineScene();
+  for (double x : LineColumns(line))
+  {
+    const double crossing = PerpendicularPlaneWinsHeight(line, kLevin, x, 2.0);
+    std::cout << std::setprecision(6) << "column x = " << x << ": e_MLS of the perpendicular plane drops below the parallel one's at "
+              << crossing << " h\n";
+    EXPECT_NEAR(crossing, kPlaneCrossingTruth, kPlaneCrossingTolerance) << "column x = " << x;
+  }
+}
+
+// ---- Figure 8: n across the noisy band of the noisy curve (h = 5) --------------------------------
+
+class PaperNoisyBand : public ::testing::Test
+{
+protected:
+  static const BandMeasure& Measure(int variant)
+  {
+    static std::map<int, BandMeasure> cache;
+    auto it = cache.find(variant);
+    if (it == cache.end())
+    {
+      it = cache.emplace(variant, MeasureNoisyBand(MakeNoisyCurveScene(5.0), variant)).first;
+      const BandMeasure& m = it->second;
+      std::cout << VariantName(variant) << ": median angle at the curve " << m.medianAngleAtCurve
+                << " deg, median turn past 45 deg at " << m.medianTurnOverSigma << " sigma (" << m.medianTurnOverH
+                << " h), in the outer part on " << m.turnInOuterPartFraction << " of the paths, max angle in the band "
+                << m.maxAngleInBand << " deg (median over the paths " << m.medianMaxAngleInBand << ", " << m.pathsPastTurnInBand
+                << " paths past 45 deg), median total variation in the band " << m.medianVariationInBand
+                << " deg\n";
+    }
+    return it->second;
+  }
+};
+
+TEST_F(PaperNoisyBand, LevinTurnsPast45DegreesInTheBandsOuterPart)
+{
+  const BandMeasure& levin = Measure(kLevin);
+  EXPECT_GE(levin.medianTurnOverSigma, kLevinTurnLowSigmas);
+  EXPECT_LE(levin.medianTurnOverSigma, kLevinTurnHighSigmas);
+}
+
+TEST_F(PaperNoisyBand, IntegralStaysCloseToTheTrueNormalInTheBand)
+{
+  const BandMeasure& integral = Measure(kIntegral);
+  EXPECT_LE(integral.medianMaxAngleInBand, kIntegralMedianMaxAngleInBand)
+    << "largest angle over all paths " << integral.maxAngleInBand << " deg";
+}
+
+TEST_F(PaperNoisyBand, IntegralTurnsMoreSmoothlyThanLevin)
+{
+  const double levin = Measure(kLevin).medianVariationInBand;
+  const double integral = Measure(kIntegral).medianVariationInBand;
+  ASSERT_GT(integral, 0.0);
+  EXPECT_GE(levin / integral, kSmoothnessFactor) << "Levin " << levin << " deg, integral " << integral << " deg";
 }
