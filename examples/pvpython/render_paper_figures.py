@@ -6,7 +6,8 @@ pss-paper-figures wrote. Reads them with stock ParaView readers only (no plugin 
     pvbatch render_paper_figures.py OUTDIR                  (with a display)
 
 Writes OUTDIR/fig01_02_projection_lines.png, fig05_line_glyphs.png, fig06_corner.png,
-fig07_delta.png, fig09_levin_h10.png and fig10_integral_h10.png. Each panel is rendered on its
+fig07_delta.png, fig09_levin_h10.png, fig10_integral_h10.png, fig03_planes.png, fig04_legend.png and
+fig08_noisy_band.png. Each panel is rendered on its
 own (2D, parallel projection) and the panels are put together with vtkImageAppend, then saved as
 8-bit palette PNGs (small enough for the README). PSS_KEEP_PANELS=1 keeps the single panels in
 OUTDIR/.panels.
@@ -19,7 +20,7 @@ import sys
 import zlib
 
 from paraview.simple import (CreateView, Delete, GetDisplayProperties, GetColorTransferFunction, Line,
-                             Render, SaveScreenshot, Show, Text, Threshold, XMLImageDataReader,
+                             PointSource, Render, SaveScreenshot, Show, Text, Threshold, XMLImageDataReader,
                              XMLPolyDataReader, ColorBy)
 from vtkmodules.vtkFiltersCore import vtkImageAppend
 from vtkmodules.vtkImagingColor import vtkImageQuantizeRGBToIndex
@@ -431,6 +432,142 @@ def figures_9_10(rows):
         compose(panels, stem + "_h10.png")
 
 
+def read_csv(name):
+    with open(path(name)) as f:
+        return [r for r in csv.DictReader(f) if not next(iter(r.values()), "").startswith("#")]
+
+
+def selected(src, *conditions):
+    """Cells of src whose cell arrays equal the given values: conditions = (array, value), ..."""
+    out = src
+    for array, value in conditions:
+        out = subset(out, array, "CELLS", value, value)
+    return out
+
+
+def percentiles(src, name, lo, hi):
+    """The lo and hi quantiles of a point array (an image's intensity range that ignores outliers)."""
+    from paraview import servermanager
+    data = servermanager.Fetch(src)
+    a = data.GetPointData().GetArray(name)
+    v = sorted(a.GetValue(i) for i in range(a.GetNumberOfTuples()))
+    return (v[int(lo * (len(v) - 1))], v[int(hi * (len(v) - 1))])
+
+
+def figure_3():
+    h = 5.0
+    energies = {float(r["height_over_h"]): r for r in read_csv("fig03_plane_energies.csv")}
+    drawn = (0.25, 0.5, 1.0, 1.5, 2.0)
+    b = (-3.2 * h, 3.2 * h, -1.2 * h, 3.6 * h)
+    w, hgt = 250, int(round(250 * (b[3] - b[2]) / (b[1] - b[0]))) + 24  # + room for the title
+    pts = poly("fig03_points.vtp")
+    planes = poly("fig03_planes.vtp")
+    residuals = poly("fig03_residuals.vtp")
+    grid = [[], [], [], []]
+    for plane, label in ((0, "parallel"), (1, "perpendicular")):
+        for k, t in enumerate(drawn):
+            v = panel_view(w, hgt, b)
+            by_value(selected(residuals, ("Height", k), ("Plane", plane)), v, "Weight", "CELLS", (0.0, 1.0),
+                     "Reds", True, False, 1.5)
+            lines(selected(planes, ("Height", k), ("Plane", 2)), v, LIGHT, 1.0)
+            lines(selected(planes, ("Height", k), ("Plane", plane)), v, BLUE, 2.5)
+            d = by_value(pts, v, "Weight%d" % k, "POINTS", (0.0, 1.0), "Grayscale", True, False, 1.0, "Points")
+            d.PointSize = 4
+            d.Position = [0.0, 0.0, 1.0]
+            points(PointSource(Center=[0.0, t * h, 0.0], NumberOfPoints=1, Radius=0.0), v, BLACK, 9, True, 2.0)
+            e = float(energies[t]["energy_%s" % label])
+            title(v, "t = %.2f h: e = %.1f" % (t, e), 13)
+            grid[2 * plane + 1].append(snap(v, "fig03_%d_%d" % (plane, k)))
+        grid[2 * plane].append(caption_panel(5 * w, 26, "plane through x %s to the line (a = %s)"
+                                             % (label, "(0, 1)" if plane == 0 else "(1, 0)"), 14, "Upper Center"))
+    # The chart: both energies against the height.
+    v = panel_view(5 * w, 260, (-1.5, 21.0, -1.2, 11.0))
+    chart = poly("fig03_chart.vtp")
+    lines(selected(chart, ("Curve", 0)), v, BLUE, 2.5)
+    lines(selected(chart, ("Curve", 1)), v, RED, 2.5)
+    lines(selected(chart, ("Curve", 2)), v, GREY, 1.0)
+    lines(selected(chart, ("Curve", 4)), v, BLACK, 1.0)
+    title(v, "e_MLS(x, a) against the height t of x (0 .. 2 h): blue, parallel plane; red, perpendicular plane; "
+          "grey: t = h / sqrt 2", 13)
+    chart_png = snap(v, "fig03_chart")
+    cross = ""
+    with open(path("fig03_plane_energies.csv")) as f:
+        for line in f:
+            if line.startswith("# crossing_over_h"):
+                cross = line.strip().split(",")[1]
+    cap = caption_panel(5 * w, 70,
+                        "Figure 3: Levin's MLS (h = 5) at x = (0, t) (black dot) above a line of points 0.1 h apart. Grey "
+                        "dots: the points, darker = larger weight theta(x, p); red: their distances to the plane\n(line) through x, "
+                        "darker = more weight; grey circle: radius h. e_MLS sums weight x squared distance. Up to "
+                        "h / sqrt 2 the parallel plane has the lower energy, above it the\nperpendicular one: measured "
+                        "crossing %s h (h / sqrt 2 = 0.7071 h)." % cross, 12)
+    compose(grid + [[chart_png], [cap]], "fig03_planes.png")
+
+
+def figure_4():
+    legend = read_csv("fig04_legend.csv")
+    h = 5.0
+    names = ("strong minimum: dumbbell", "weaker minimum: ellipse", "unstable: circle")
+    row = []
+    glyphs = poly("fig04_glyphs.vtp")
+    fits = poly("fig04_fits.vtp")
+    for k, r in enumerate(legend):
+        t = float(r["height_over_h"])
+        b = (-0.55 * h, 0.55 * h, t * h - 0.55 * h, t * h + 0.55 * h)
+        v = panel_view(260, 260, b)
+        lines(selected(glyphs, ("SampleId", k)), v, BLUE, 2.5)
+        lines(selected(fits, ("SampleId", k)), v, RED, 2.0)
+        title(v, "%s\nstability %s" % (names[k], r["stability"]), 13)
+        row.append(snap(v, "fig04_%d" % k))
+    cap = caption_panel(780, 66,
+                        "Figure 4: the energy plot x + c e(x, a) a over directions a (blue) is narrowest along n(x); "
+                        "red: the best-fitting line,\nnormal to n(x). Levin's MLS at 0.1 h, 0.5 h and 0.7 h above the "
+                        "line of Figure 5 (h = 5); stability = (e_max - e_min) / (e_max + e_min).", 12)
+    compose([row, [cap]], "fig04_legend.png")
+
+
+def figure_8():
+    cloud = poly("noisy_curve_cloud.vtp")
+    band = {r["variant"]: r for r in read_csv("fig08_noisy_band.csv")}
+    band_lines = poly("fig08_band.vtp")
+    gw = (163.0, 197.0, -32.0, 2.0)
+    big = (128.0, 204.0, -40.0, 10.0)
+    grid = []
+    for key, name in (("levin", "Levin's MLS energy e_MLS"), ("integral", "integral energy e_I")):
+        r = band[key]
+        v = panel_view(420, 420, gw)
+        lines(selected(band_lines, ("Kind", 0)), v, LIGHT, 1.0)
+        points(cloud, v, GREY, 3)
+        lines(poly("fig08_%s_glyphs.vtp" % key), v, BLUE, 1.2)
+        lines(poly("fig08_%s_glyph_fits.vtp" % key), v, RED, 1.2)
+        left = snap(v, "fig08_%s_glyphs" % key)
+        v = panel_view(640, 420, big)
+        field = image("fig08_%s_field.vti" % key)
+        rng = percentiles(field, "LogEnergy", 0.02, 0.98)
+        by_value(field, v, "LogEnergy", "POINTS", rng, "Grayscale", False, False, 1.0, "Slice")
+        lines(poly("fig08_%s_fits.vtp" % key), v, [0.6, 0.6, 0.6], 1.5)
+        lines(selected(band_lines, ("Kind", 0)), v, STEEL, 1.0)
+        lines(selected(band_lines, ("Kind", 1)), v, STEEL, 0.5, 0.5)
+        points(cloud, v, RED, 2)
+        points(poly("fig08_%s_turns.vtp" % key), v, YELLOW, 6, True, 2.0)
+        right = snap(v, "fig08_%s_fits" % key)
+        grid.append([caption_panel(1060, 30, "%s: n past 45 degrees on %s paths within the band, median largest angle "
+                                   "%s deg, total variation %s deg" % (name, r["paths_past_45_in_band"] + "/" + r["paths"],
+                                                                       r["median_max_angle_in_band_deg"],
+                                                                       r["median_total_variation_in_band_deg"]),
+                                   14, "Upper Center")])
+        grid.append([left, right])
+    cap = caption_panel(1060, 84,
+                        "Figure 8: the noisy end of the noisy curve (h = 5; red/grey dots: the points). Left: energy "
+                        "plots (blue) and best-fitting lines (red) on a lattice 0.4 h apart.\nRight: best-fitting lines "
+                        "(grey) over e(x, n(x)) (log scale, 2nd to 98th percentile, dark = low); blue-grey: the band, "
+                        "2 sigma around the true curve,\nand 26 paths across it; yellow: where n first passes 45 degrees "
+                        "from the true normal. n_MLS turns parallel to the curve in the band's outer part\n(median %s "
+                        "sigma = %s h out); n_I stays close to the normal." % (band["levin"]["median_turn_over_sigma"],
+                                                                             band["levin"]["median_turn_over_h"]), 12)
+    compose(grid + [[cap]], "fig08_noisy_band.png")
+
+
 def main():
     rows = table()
     flip = rows[("line", "levin")]["flip_height_over_h"]
@@ -439,6 +576,9 @@ def main():
     figure_6(rows)
     figure_7()
     figures_9_10(rows)
+    figure_3()
+    figure_4()
+    figure_8()
     if not os.environ.get("PSS_KEEP_PANELS"):
         shutil.rmtree(PANELS, ignore_errors=True)
 
