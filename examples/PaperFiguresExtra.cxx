@@ -84,7 +84,17 @@ std::vector<pss::Vec3> Circle(const pss::Vec3& c, double r)
 }
 
 const std::vector<double> Figure3DrawnHeights = { 0.25, 0.5, 1.0, 1.5, 2.0 }; // in h, at x = 0
-const std::vector<double> Figure4Heights = { 0.1, 0.5, 0.7 };                  // in h, at x = 0
+// Figure 4's glyphs: heights above the line, each in its own column x (the line is uniform there).
+const std::vector<double> Figure4Heights = { 0.1, 0.5, 0.7 }; // in h
+const std::vector<double> Figure4Columns = { -1.2, 0.0, 1.2 }; // in h
+
+// Where the panel of Figure 3's k-th drawn height and plane (0 parallel, 1 perpendicular) is
+// drawn: columns 7 h apart, the perpendicular row 5.6 h below the parallel one (the renderer
+// assumes this layout).
+pss::Vec3 Figure3Offset(int k, int plane, double h)
+{
+  return pss::Vec3(7.0 * h * k, -5.6 * h * plane, 0.0);
+}
 
 // The window of Figure 8 around the noisy end of the curve, {xmin, xmax, ymin, ymax}.
 const double Figure8Window[4] = { 128.0, 204.0, -40.0, 10.0 };
@@ -154,12 +164,15 @@ Figure3Result Figure3(const Scene& line, std::vector<Check>& checks)
   }
   r.table = LinePlaneEnergies(line, levin, 0.0, tableHeights);
 
-  // The drawing: per drawn height, both planes (segments of half-length 3 h through x), the circle
-  // of radius h around x, and from every cloud point within 3 h of the column its residual to
-  // each plane, tagged with its weight theta(x, p) (for the drawing only: the energies come from
-  // the glyph filter).
+  // The drawing, laid out as a grid of panels in one plane (one view renders them all, see
+  // Figure3Offset): column k for the k-th drawn height, row 0 the plane parallel to the line, row 1
+  // the perpendicular plane. Per panel: the plane (a segment of half-length 3 h through x), the circle
+  // of radius h around x, x itself, the cloud points within 3 h of the column with their weight
+  // theta(x, p), and each point's residual to the plane with the same weight. The weights are for
+  // the drawing only: the energies come from the glyph filter.
   const double h = line.h;
   Drawing planes;
+  Drawing circles;
   Drawing residuals;
   std::vector<pss::Vec3> near;
   for (vtkIdType i = 0; i < line.cloud->GetNumberOfPoints(); ++i)
@@ -171,29 +184,43 @@ Figure3Result Figure3(const Scene& line, std::vector<Check>& checks)
       near.emplace_back(p[0], p[1], 0.0);
     }
   }
-  vtkSmartPointer<vtkPolyData> weighted = MakePointCloud(near);
+  std::vector<pss::Vec3> drawnPoints;
+  std::vector<double> drawnWeights;
+  std::vector<pss::Vec3> centres;
   for (std::size_t k = 0; k < Figure3DrawnHeights.size(); ++k)
   {
     const pss::Vec3 x(0.0, Figure3DrawnHeights[k] * h, 0.0);
-    const double kk = static_cast<double>(k);
-    planes.Line({ x - 3.0 * h * pss::Vec3::UnitX(), x + 3.0 * h * pss::Vec3::UnitX() }, { kk, 0.0 });
-    planes.Line({ x - 3.0 * h * pss::Vec3::UnitY(), x + 3.0 * h * pss::Vec3::UnitY() }, { kk, 1.0 });
-    planes.Line(Circle(x, h), { kk, 2.0 });
-    vtkNew<vtkDoubleArray> w;
-    w->SetName(("Weight" + std::to_string(k)).c_str());
-    for (const pss::Vec3& p : near)
+    for (int plane = 0; plane < 2; ++plane)
     {
-      const double theta = std::exp(-(p - x).squaredNorm() / (h * h));
-      w->InsertNextValue(theta);
-      residuals.Line({ p, pss::Vec3(p.x(), x.y(), 0.0) }, { kk, 0.0, theta });
-      residuals.Line({ p, pss::Vec3(x.x(), p.y(), 0.0) }, { kk, 1.0, theta });
+      const pss::Vec3 o = Figure3Offset(static_cast<int>(k), plane, h);
+      const pss::Vec3 along = plane == 0 ? pss::Vec3::UnitX() : pss::Vec3::UnitY();
+      planes.Line({ o + x - 3.0 * h * along, o + x + 3.0 * h * along }, { static_cast<double>(plane) });
+      circles.Line(Circle(o + x, h), { 0.0 });
+      centres.push_back(o + x);
+      for (const pss::Vec3& p : near)
+      {
+        const double theta = std::exp(-(p - x).squaredNorm() / (h * h));
+        const pss::Vec3 foot = plane == 0 ? pss::Vec3(p.x(), x.y(), 0.0) : pss::Vec3(x.x(), p.y(), 0.0);
+        residuals.Line({ o + p, o + foot }, { theta });
+        drawnPoints.push_back(o + p);
+        drawnWeights.push_back(theta);
+      }
     }
-    weighted->GetPointData()->AddArray(w);
   }
+  vtkSmartPointer<vtkPolyData> weighted = MakePointCloud(drawnPoints);
+  vtkNew<vtkDoubleArray> w;
+  w->SetName("Weight");
+  for (double v : drawnWeights)
+  {
+    w->InsertNextValue(v);
+  }
+  weighted->GetPointData()->AddArray(w);
   Label(weighted, "points on a line", h);
   Write(weighted, "fig03_points.vtp");
-  Write(planes.Build({ "Height", "Plane" }), "fig03_planes.vtp");
-  Write(residuals.Build({ "Height", "Plane", "Weight" }), "fig03_residuals.vtp");
+  Write(MakePointCloud(centres), "fig03_x.vtp");
+  Write(planes.Build({ "Plane" }), "fig03_planes.vtp");
+  Write(circles.Build({ "Circle" }), "fig03_circles.vtp");
+  Write(residuals.Build({ "Weight" }), "fig03_residuals.vtp");
 
   // The chart: both energies against the height, 0 .. 2 h, in chart units (x: 10 per h, y: 10 at
   // the largest energy), and vertical marks at h / sqrt 2 (tag 2) and at the measured crossing (3).
@@ -259,19 +286,21 @@ void PrintAndWriteFigure3(const Figure3Result& r)
 void Figure4(const Scene& line)
 {
   std::vector<pss::Vec3> samples;
-  for (double t : Figure4Heights)
+  for (std::size_t k = 0; k < Figure4Heights.size(); ++k)
   {
-    samples.emplace_back(0.0, t * line.h, 0.0);
+    samples.emplace_back(Figure4Columns[k] * line.h, Figure4Heights[k] * line.h, 0.0);
   }
   const Glyphs g = EnergyGlyphs(line, vtkPointSetSurface::LEVIN_MLS, samples, 0.4, 0.45);
   Write(g.glyphs, "fig04_glyphs.vtp");
   Write(g.fits, "fig04_fits.vtp");
   vtkDataArray* stability = g.fits->GetCellData()->GetArray("Stability");
   std::ofstream csv(OutDir / "fig04_legend.csv");
-  csv << "height_over_h,stability\n";
+  csv << "x_over_h,height_over_h,stability\n";
   for (vtkIdType i = 0; i < g.fits->GetNumberOfCells(); ++i)
   {
-    csv << Fixed(Figure4Heights[static_cast<std::size_t>(i)], 2) << ',' << Fixed(stability->GetTuple1(i), 4) << '\n';
+    const std::size_t k = static_cast<std::size_t>(i);
+    csv << Fixed(Figure4Columns[k], 2) << ',' << Fixed(Figure4Heights[k], 2) << ',' << Fixed(stability->GetTuple1(i), 4)
+        << '\n';
   }
 }
 

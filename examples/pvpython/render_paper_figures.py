@@ -454,34 +454,42 @@ def percentiles(src, name, lo, hi):
     return (v[int(lo * (len(v) - 1))], v[int(hi * (len(v) - 1))])
 
 
+def label_at(view, text, fx, fy, size=13):
+    """Text at a fraction (fx, fy) of the view (its lower left corner there)."""
+    t = Text(Text=text)
+    d = Show(t, view)
+    d.WindowLocation = "Any Location"
+    d.Position = [fx, fy]
+    d.FontSize = size
+    d.Color = BLACK
+    return t
+
+
 def figure_3():
+    """One view for the ten panels: pss-paper-figures lays them out (PaperFiguresExtra.cxx,
+    Figure3Offset: columns 7 h apart, the perpendicular row 5.6 h below the parallel one)."""
     h = 5.0
     energies = {float(r["height_over_h"]): r for r in read_csv("fig03_plane_energies.csv")}
     drawn = (0.25, 0.5, 1.0, 1.5, 2.0)
-    b = (-3.2 * h, 3.2 * h, -1.2 * h, 3.6 * h)
-    w, hgt = 250, int(round(250 * (b[3] - b[2]) / (b[1] - b[0]))) + 24  # + room for the title
-    pts = poly("fig03_points.vtp")
-    planes = poly("fig03_planes.vtp")
-    residuals = poly("fig03_residuals.vtp")
-    grid = [[], [], [], []]
+    b = (-3.3 * h, 4 * 7.0 * h + 3.3 * h, -5.6 * h - 1.3 * h, 3.9 * h)
+    w = 1250
+    v = panel_view(w, int(round(w * (b[3] - b[2]) / (b[1] - b[0]))), b)
+    by_value(poly("fig03_residuals.vtp"), v, "Weight", "CELLS", (0.0, 1.0), "Reds", True, False, 1.5)
+    lines(poly("fig03_circles.vtp"), v, LIGHT, 1.0)
+    lines(poly("fig03_planes.vtp"), v, BLUE, 2.5)
+    d = by_value(poly("fig03_points.vtp"), v, "Weight", "POINTS", (0.0, 1.0), "Grayscale", True, False, 1.0, "Points")
+    d.PointSize = 4
+    d.Position = [0.0, 0.0, 1.0]
+    points(poly("fig03_x.vtp"), v, BLACK, 9, True, 2.0)
     for plane, label in ((0, "parallel"), (1, "perpendicular")):
         for k, t in enumerate(drawn):
-            v = panel_view(w, hgt, b)
-            by_value(selected(residuals, ("Height", k), ("Plane", plane)), v, "Weight", "CELLS", (0.0, 1.0),
-                     "Reds", True, False, 1.5)
-            lines(selected(planes, ("Height", k), ("Plane", 2)), v, LIGHT, 1.0)
-            lines(selected(planes, ("Height", k), ("Plane", plane)), v, BLUE, 2.5)
-            d = by_value(pts, v, "Weight%d" % k, "POINTS", (0.0, 1.0), "Grayscale", True, False, 1.0, "Points")
-            d.PointSize = 4
-            d.Position = [0.0, 0.0, 1.0]
-            points(PointSource(Center=[0.0, t * h, 0.0], NumberOfPoints=1, Radius=0.0), v, BLACK, 9, True, 2.0)
             e = float(energies[t]["energy_%s" % label])
-            title(v, "t = %.2f h: e = %.1f" % (t, e), 13)
-            grid[2 * plane + 1].append(snap(v, "fig03_%d_%d" % (plane, k)))
-        grid[2 * plane].append(caption_panel(5 * w, 26, "plane through x %s to the line (a = %s)"
-                                             % (label, "(0, 1)" if plane == 0 else "(1, 0)"), 14, "Upper Center"))
+            fx = (7.0 * h * k - 1.6 * h - b[0]) / (b[1] - b[0])
+            fy = (-5.6 * h * plane + 3.25 * h - b[2]) / (b[3] - b[2])
+            label_at(v, "t = %.2f h: e = %.1f" % (t, e), fx, fy, 12)
+    panels = snap(v, "fig03_panels")
     # The chart: both energies against the height.
-    v = panel_view(5 * w, 260, (-1.5, 21.0, -1.2, 11.0))
+    v = panel_view(w, 240, (-1.5, 21.0, -1.2, 11.0))
     chart = poly("fig03_chart.vtp")
     lines(selected(chart, ("Curve", 0)), v, BLUE, 2.5)
     lines(selected(chart, ("Curve", 1)), v, RED, 2.5)
@@ -495,35 +503,35 @@ def figure_3():
         for line in f:
             if line.startswith("# crossing_over_h"):
                 cross = line.strip().split(",")[1]
-    cap = caption_panel(5 * w, 70,
-                        "Figure 3: Levin's MLS (h = 5) at x = (0, t) (black dot) above a line of points 0.1 h apart. Grey "
-                        "dots: the points, darker = larger weight theta(x, p); red: their distances to the plane\n(line) through x, "
-                        "darker = more weight; grey circle: radius h. e_MLS sums weight x squared distance. Up to "
-                        "h / sqrt 2 the parallel plane has the lower energy, above it the\nperpendicular one: measured "
-                        "crossing %s h (h / sqrt 2 = 0.7071 h)." % cross, 12)
-    compose(grid + [[chart_png], [cap]], "fig03_planes.png")
+    cap = caption_panel(w, 84,
+                        "Figure 3: Levin's MLS (h = 5) at x = (0, t) (black dot) above a line of points 0.1 h apart; top "
+                        "row: the plane (line) through x parallel to the line, a = (0, 1);\nbottom row: the plane "
+                        "perpendicular to it, a = (1, 0). Grey dots: the points, darker = larger weight theta(x, p); "
+                        "red: their distances to the plane, darker =\nmore weight (below, they lie along the line); "
+                        "grey circle: radius h. e_MLS sums weight x squared distance. Up to h / sqrt 2 the parallel "
+                        "plane has the\nlower energy, above it the perpendicular one: measured crossing %s h "
+                        "(h / sqrt 2 = 0.7071 h)." % cross, 12)
+    compose([[panels], [chart_png], [cap]], "fig03_planes.png")
 
 
 def figure_4():
+    """One view: pss-paper-figures puts the three samples in columns -1.2 h, 0 and 1.2 h."""
     legend = read_csv("fig04_legend.csv")
     h = 5.0
     names = ("strong minimum: dumbbell", "weaker minimum: ellipse", "unstable: circle")
-    row = []
-    glyphs = poly("fig04_glyphs.vtp")
-    fits = poly("fig04_fits.vtp")
+    b = (-1.8 * h, 1.8 * h, -0.1 * h, 1.45 * h)
+    v = panel_view(780, int(round(780 * (b[3] - b[2]) / (b[1] - b[0]))), b)
+    lines(poly("fig04_glyphs.vtp"), v, BLUE, 2.5)
+    lines(poly("fig04_fits.vtp"), v, RED, 2.0)
     for k, r in enumerate(legend):
-        t = float(r["height_over_h"])
-        b = (-0.55 * h, 0.55 * h, t * h - 0.55 * h, t * h + 0.55 * h)
-        v = panel_view(260, 260, b)
-        lines(selected(glyphs, ("SampleId", k)), v, BLUE, 2.5)
-        lines(selected(fits, ("SampleId", k)), v, RED, 2.0)
-        title(v, "%s\nstability %s" % (names[k], r["stability"]), 13)
-        row.append(snap(v, "fig04_%d" % k))
+        fx = (float(r["x_over_h"]) * h - 0.5 * h - b[0]) / (b[1] - b[0])
+        label_at(v, "%s\nat %s h, stability %s" % (names[k], r["height_over_h"], r["stability"]), fx, 0.86, 12)
+    row = snap(v, "fig04_glyphs")
     cap = caption_panel(780, 66,
                         "Figure 4: the energy plot x + c e(x, a) a over directions a (blue) is narrowest along n(x); "
-                        "red: the best-fitting line,\nnormal to n(x). Levin's MLS at 0.1 h, 0.5 h and 0.7 h above the "
+                        "red: the best-fitting line,\nnormal to n(x). Levin's MLS 0.1 h, 0.5 h and 0.7 h above the "
                         "line of Figure 5 (h = 5); stability = (e_max - e_min) / (e_max + e_min).", 12)
-    compose([row, [cap]], "fig04_legend.png")
+    compose([[row], [cap]], "fig04_legend.png")
 
 
 def figure_8():
@@ -534,12 +542,12 @@ def figure_8():
     big = (128.0, 204.0, -40.0, 10.0)
     grid = []
     for key, name in (("levin", "Levin's MLS energy e_MLS"), ("integral", "integral energy e_I")):
-        r = band[key]
         v = panel_view(420, 420, gw)
         lines(selected(band_lines, ("Kind", 0)), v, LIGHT, 1.0)
         points(cloud, v, GREY, 3)
         lines(poly("fig08_%s_glyphs.vtp" % key), v, BLUE, 1.2)
         lines(poly("fig08_%s_glyph_fits.vtp" % key), v, RED, 1.2)
+        title(v, name, 14, "Upper Left Corner")
         left = snap(v, "fig08_%s_glyphs" % key)
         v = panel_view(640, 420, big)
         field = image("fig08_%s_field.vti" % key)
@@ -551,20 +559,21 @@ def figure_8():
         points(cloud, v, RED, 2)
         points(poly("fig08_%s_turns.vtp" % key), v, YELLOW, 6, True, 2.0)
         right = snap(v, "fig08_%s_fits" % key)
-        grid.append([caption_panel(1060, 30, "%s: n past 45 degrees on %s paths within the band, median largest angle "
-                                   "%s deg, total variation %s deg" % (name, r["paths_past_45_in_band"] + "/" + r["paths"],
-                                                                       r["median_max_angle_in_band_deg"],
-                                                                       r["median_total_variation_in_band_deg"]),
-                                   14, "Upper Center")])
         grid.append([left, right])
-    cap = caption_panel(1060, 84,
-                        "Figure 8: the noisy end of the noisy curve (h = 5; red/grey dots: the points). Left: energy "
-                        "plots (blue) and best-fitting lines (red) on a lattice 0.4 h apart.\nRight: best-fitting lines "
-                        "(grey) over e(x, n(x)) (log scale, 2nd to 98th percentile, dark = low); blue-grey: the band, "
-                        "2 sigma around the true curve,\nand 26 paths across it; yellow: where n first passes 45 degrees "
-                        "from the true normal. n_MLS turns parallel to the curve in the band's outer part\n(median %s "
-                        "sigma = %s h out); n_I stays close to the normal." % (band["levin"]["median_turn_over_sigma"],
-                                                                             band["levin"]["median_turn_over_h"]), 12)
+    lv, it = band["levin"], band["integral"]
+    cap = caption_panel(1060, 100,
+                        "Figure 8: the noisy end of the noisy curve (h = 5; grey/red dots: the points); top Levin's MLS, "
+                        "bottom the integral variant. Left: energy plots (blue) and\nbest-fitting lines (red) on a "
+                        "lattice 0.4 h apart. Right: best-fitting lines (grey) over e(x, n(x)) (log scale, 2nd to 98th "
+                        "percentile, dark = low); blue-grey:\nthe band, 2 sigma around the true curve, and %s paths "
+                        "across it; yellow: where n first passes 45 degrees from the true normal. n_MLS does so in the "
+                        "band's\nouter part (median %s sigma = %s h out; on %s/%s paths within the band), n_I on %s/%s "
+                        "paths; median largest angle in the band %s deg (MLS) and %s deg (e_I);\nmedian total "
+                        "variation of n along a path in the band %s deg (MLS) and %s deg (e_I)."
+                        % (lv["paths"], lv["median_turn_over_sigma"], lv["median_turn_over_h"],
+                           lv["paths_past_45_in_band"], lv["paths"], it["paths_past_45_in_band"], it["paths"],
+                           lv["median_max_angle_in_band_deg"], it["median_max_angle_in_band_deg"],
+                           lv["median_total_variation_in_band_deg"], it["median_total_variation_in_band_deg"]), 12)
     compose(grid + [[cap]], "fig08_noisy_band.png")
 
 
