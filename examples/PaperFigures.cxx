@@ -38,27 +38,17 @@
 #include "PaperOutput.h"
 #include "PaperScenes.h"
 
-#include "vtkPointSetSurfaceEnergyGlyphs.h"
-#include "vtkPointSetSurfaceFieldSampler.h"
-
-#include "vtkCellArray.h"
 #include "vtkContourFilter.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
-#include "vtkFieldData.h"
 #include "vtkImageData.h"
-#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkMath.h"
 #include "vtkSMPTools.h"
 #include "vtkStaticPointLocator.h"
 #include "vtkStreamTracer.h"
-#include "vtkStringArray.h"
-#include "vtkXMLImageDataWriter.h"
-#include "vtkXMLPolyDataWriter.h"
 
 #include <algorithm>
 #include <chrono>
@@ -69,7 +59,6 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>

@@ -466,12 +466,19 @@ def label_at(view, text, fx, fy, size=13):
 
 
 def figure_3():
-    """One view for the ten panels: pss-paper-figures lays them out (PaperFiguresExtra.cxx,
-    Figure3Offset: columns 7 h apart, the perpendicular row 5.6 h below the parallel one)."""
+    """One view: pss-paper-figures lays the ten panels out (PaperFiguresExtra.cxx, Figure3Offset:
+    columns 7 h apart, the perpendicular row 5.6 h below the parallel one); the chart is drawn below
+    them (scaled by the display) and the caption below that."""
     h = 5.0
     energies = {float(r["height_over_h"]): r for r in read_csv("fig03_plane_energies.csv")}
+    cross = ""
+    with open(path("fig03_plane_energies.csv")) as f:
+        for line in f:
+            if line.startswith("# crossing_over_h"):
+                cross = line.strip().split(",")[1]
     drawn = (0.25, 0.5, 1.0, 1.5, 2.0)
-    b = (-3.3 * h, 4 * 7.0 * h + 3.3 * h, -5.6 * h - 1.3 * h, 3.9 * h)
+    chart_origin, chart_scale = (50.0, -17.0 * h), (4.0, 2.4)  # chart units (x 0..20, y 0..10) -> world
+    b = (-3.3 * h, 4 * 7.0 * h + 3.3 * h, -21.5 * h, 3.9 * h)
     w = 1250
     v = panel_view(w, int(round(w * (b[3] - b[2]) / (b[1] - b[0]))), b)
     by_value(poly("fig03_residuals.vtp"), v, "Weight", "CELLS", (0.0, 1.0), "Reds", True, False, 1.5)
@@ -481,37 +488,31 @@ def figure_3():
     d.PointSize = 4
     d.Position = [0.0, 0.0, 1.0]
     points(poly("fig03_x.vtp"), v, BLACK, 9, True, 2.0)
+
+    def fraction(x, y):
+        return [(x - b[0]) / (b[1] - b[0]), (y - b[2]) / (b[3] - b[2])]
+
     for plane, label in ((0, "parallel"), (1, "perpendicular")):
         for k, t in enumerate(drawn):
             e = float(energies[t]["energy_%s" % label])
-            fx = (7.0 * h * k - 1.6 * h - b[0]) / (b[1] - b[0])
-            fy = (-5.6 * h * plane + 3.25 * h - b[2]) / (b[3] - b[2])
+            fx, fy = fraction(7.0 * h * k - 1.6 * h, -5.6 * h * plane + 3.25 * h)
             label_at(v, "t = %.2f h: e = %.1f" % (t, e), fx, fy, 12)
-    panels = snap(v, "fig03_panels")
-    # The chart: both energies against the height.
-    v = panel_view(w, 240, (-1.5, 21.0, -1.2, 11.0))
     chart = poly("fig03_chart.vtp")
-    lines(selected(chart, ("Curve", 0)), v, BLUE, 2.5)
-    lines(selected(chart, ("Curve", 1)), v, RED, 2.5)
-    lines(selected(chart, ("Curve", 2)), v, GREY, 1.0)
-    lines(selected(chart, ("Curve", 4)), v, BLACK, 1.0)
-    title(v, "e_MLS(x, a) against the height t of x (0 .. 2 h): blue, parallel plane; red, perpendicular plane; "
-          "grey: t = h / sqrt 2", 13)
-    chart_png = snap(v, "fig03_chart")
-    cross = ""
-    with open(path("fig03_plane_energies.csv")) as f:
-        for line in f:
-            if line.startswith("# crossing_over_h"):
-                cross = line.strip().split(",")[1]
-    cap = caption_panel(w, 84,
-                        "Figure 3: Levin's MLS (h = 5) at x = (0, t) (black dot) above a line of points 0.1 h apart; top "
-                        "row: the plane (line) through x parallel to the line, a = (0, 1);\nbottom row: the plane "
-                        "perpendicular to it, a = (1, 0). Grey dots: the points, darker = larger weight theta(x, p); "
-                        "red: their distances to the plane, darker =\nmore weight (below, they lie along the line); "
-                        "grey circle: radius h. e_MLS sums weight x squared distance. Up to h / sqrt 2 the parallel "
-                        "plane has the\nlower energy, above it the perpendicular one: measured crossing %s h "
-                        "(h / sqrt 2 = 0.7071 h)." % cross, 12)
-    compose([[panels], [chart_png], [cap]], "fig03_planes.png")
+    for curve, color, width in ((0, BLUE, 2.5), (1, RED, 2.5), (2, GREY, 1.0), (4, BLACK, 1.0)):
+        dc = lines(selected(chart, ("Curve", curve)), v, color, width)
+        dc.Scale = [chart_scale[0], chart_scale[1], 1.0]
+        dc.Position = [chart_origin[0], chart_origin[1], 0.0]
+    fx, fy = fraction(chart_origin[0] - 10.0, chart_origin[1] + 10.6 * chart_scale[1])
+    label_at(v, "e_MLS(x, a) against the height t of x (0 .. 2 h): blue, parallel plane; red, perpendicular plane; "
+             "grey: t = h / sqrt 2", fx, fy, 13)
+    title(v, "Figure 3: Levin's MLS (h = 5) at x = (0, t) (black dot) above a line of points 0.1 h apart; top "
+             "row: the plane (line) through x parallel to the line, a = (0, 1);\nbottom row: the plane "
+             "perpendicular to it, a = (1, 0). Grey dots: the points, darker = larger weight theta(x, p); "
+             "red: their distances to the plane, darker =\nmore weight (below, they lie along the line); "
+             "grey circle: radius h. e_MLS sums weight x squared distance. Up to h / sqrt 2 the parallel "
+             "plane has the\nlower energy, above it the perpendicular one: measured crossing %s h "
+             "(h / sqrt 2 = 0.7071 h)." % cross, 12, "Lower Left Corner")
+    compose([[snap(v, "fig03")]], "fig03_planes.png")
 
 
 def figure_4():
@@ -519,47 +520,55 @@ def figure_4():
     legend = read_csv("fig04_legend.csv")
     h = 5.0
     names = ("strong minimum: dumbbell", "weaker minimum: ellipse", "unstable: circle")
-    b = (-1.8 * h, 1.8 * h, -0.1 * h, 1.45 * h)
+    b = (-1.8 * h, 1.8 * h, -0.55 * h, 1.45 * h)
     v = panel_view(780, int(round(780 * (b[3] - b[2]) / (b[1] - b[0]))), b)
     lines(poly("fig04_glyphs.vtp"), v, BLUE, 2.5)
     lines(poly("fig04_fits.vtp"), v, RED, 2.0)
     for k, r in enumerate(legend):
         fx = (float(r["x_over_h"]) * h - 0.5 * h - b[0]) / (b[1] - b[0])
-        label_at(v, "%s\nat %s h, stability %s" % (names[k], r["height_over_h"], r["stability"]), fx, 0.86, 12)
-    row = snap(v, "fig04_glyphs")
-    cap = caption_panel(780, 66,
-                        "Figure 4: the energy plot x + c e(x, a) a over directions a (blue) is narrowest along n(x); "
-                        "red: the best-fitting line,\nnormal to n(x). Levin's MLS 0.1 h, 0.5 h and 0.7 h above the "
-                        "line of Figure 5 (h = 5); stability = (e_max - e_min) / (e_max + e_min).", 12)
-    compose([[row], [cap]], "fig04_legend.png")
+        label_at(v, "%s\nat %s h, stability %s" % (names[k], r["height_over_h"], r["stability"]), fx, 0.88, 12)
+    title(v, "Figure 4: the energy plot x + c e(x, a) a over directions a (blue) is narrowest along n(x); red: the "
+             "best-fitting line,\nnormal to n(x). Levin's MLS 0.1 h, 0.5 h and 0.7 h above the line of Figure 5 "
+             "(h = 5); stability = (e_max - e_min) / (e_max + e_min).", 12, "Lower Left Corner")
+    compose([[snap(v, "fig04")]], "fig04_legend.png")
 
 
 def figure_8():
-    cloud = poly("noisy_curve_cloud.vtp")
+    """Two views: the glyph panels (Levin above, integral below, shifted by the display) and the
+    fields (the same), then the caption."""
     band = {r["variant"]: r for r in read_csv("fig08_noisy_band.csv")}
-    band_lines = poly("fig08_band.vtp")
     gw = (163.0, 197.0, -32.0, 2.0)
     big = (128.0, 204.0, -40.0, 10.0)
-    grid = []
-    for key, name in (("levin", "Levin's MLS energy e_MLS"), ("integral", "integral energy e_I")):
-        v = panel_view(420, 420, gw)
-        lines(selected(band_lines, ("Kind", 0)), v, LIGHT, 1.0)
-        points(cloud, v, GREY, 3)
-        lines(poly("fig08_%s_glyphs.vtp" % key), v, BLUE, 1.2)
-        lines(poly("fig08_%s_glyph_fits.vtp" % key), v, RED, 1.2)
-        title(v, name, 14, "Upper Left Corner")
-        left = snap(v, "fig08_%s_glyphs" % key)
-        v = panel_view(640, 420, big)
+    gshift = -(gw[3] - gw[2]) - 1.0
+    bshift = -(big[3] - big[2]) - 1.5
+    vg = panel_view(420, 850, (gw[0], gw[1], gw[2] + gshift, gw[3]))
+    vb = panel_view(640, 850, (big[0], big[1], big[2] + bshift, big[3]))
+    for row, (key, name) in enumerate((("levin", "Levin's MLS energy e_MLS"), ("integral", "integral energy e_I"))):
+        # A source has one display per view: each row reads its own copy.
+        cloud = poly("noisy_curve_cloud.vtp")
+        band_lines = poly("fig08_band.vtp")
+        band_curves = selected(band_lines, ("Kind", 0))
+        band_paths = selected(band_lines, ("Kind", 1))
+        shown = []
+        shown.append(lines(band_curves, vg, LIGHT, 1.0))
+        shown.append(points(cloud, vg, GREY, 3))
+        shown.append(lines(poly("fig08_%s_glyphs.vtp" % key), vg, BLUE, 1.2))
+        shown.append(lines(poly("fig08_%s_glyph_fits.vtp" % key), vg, RED, 1.2))
+        for d in shown:
+            d.Position = [0.0, row * gshift, d.Position[2]]
+        label_at(vg, name, 0.01, 0.97 - 0.5 * row, 14)
         field = image("fig08_%s_field.vti" % key)
         rng = percentiles(field, "LogEnergy", 0.02, 0.98)
-        by_value(field, v, "LogEnergy", "POINTS", rng, "Grayscale", False, False, 1.0, "Slice")
-        lines(poly("fig08_%s_fits.vtp" % key), v, [0.6, 0.6, 0.6], 1.5)
-        lines(selected(band_lines, ("Kind", 0)), v, STEEL, 1.0)
-        lines(selected(band_lines, ("Kind", 1)), v, STEEL, 0.5, 0.5)
-        points(cloud, v, RED, 2)
-        points(poly("fig08_%s_turns.vtp" % key), v, YELLOW, 6, True, 2.0)
-        right = snap(v, "fig08_%s_fits" % key)
-        grid.append([left, right])
+        shown = [by_value(field, vb, "LogEnergy", "POINTS", rng, "Grayscale", False, False, 1.0, "Slice")]
+        shown.append(lines(poly("fig08_%s_fits.vtp" % key), vb, [0.6, 0.6, 0.6], 1.5))
+        shown.append(lines(band_curves, vb, STEEL, 1.0))
+        shown.append(lines(band_paths, vb, STEEL, 0.5, 0.5))
+        shown.append(points(cloud, vb, RED, 2))
+        shown.append(points(poly("fig08_%s_turns.vtp" % key), vb, YELLOW, 6, True, 2.0))
+        for d in shown:
+            d.Position = [0.0, row * bshift, d.Position[2]]
+    left = snap(vg, "fig08_glyphs")
+    right = snap(vb, "fig08_fields")
     lv, it = band["levin"], band["integral"]
     cap = caption_panel(1060, 100,
                         "Figure 8: the noisy end of the noisy curve (h = 5; grey/red dots: the points); top Levin's MLS, "
@@ -574,7 +583,7 @@ def figure_8():
                            lv["paths_past_45_in_band"], lv["paths"], it["paths_past_45_in_band"], it["paths"],
                            lv["median_max_angle_in_band_deg"], it["median_max_angle_in_band_deg"],
                            lv["median_total_variation_in_band_deg"], it["median_total_variation_in_band_deg"]), 12)
-    compose(grid + [[cap]], "fig08_noisy_band.png")
+    compose([[left, right], [cap]], "fig08_noisy_band.png")
 
 
 def main():

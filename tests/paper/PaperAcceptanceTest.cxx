@@ -230,8 +230,9 @@ TEST(PaperGallery, ReadmeShowsEveryFigureWithAClaimAndAMeasurement)
   ASSERT_NE(end, std::string::npos);
   ASSERT_LT(begin, end);
   const std::string section = readme.substr(begin, end - begin);
-  for (const char* image : { "fig01_02_projection_lines.png", "fig05_line_glyphs.png", "fig06_corner.png",
-         "fig07_delta.png", "fig09_levin_h10.png", "fig10_integral_h10.png" })
+  for (const char* image : { "fig01_02_projection_lines.png", "fig03_planes.png", "fig04_legend.png",
+         "fig05_line_glyphs.png", "fig06_corner.png", "fig07_delta.png", "fig08_noisy_band.png",
+         "fig09_levin_h10.png", "fig10_integral_h10.png" })
   {
     const std::string link = std::string("docs/images/") + image;
     const std::size_t at = section.find(link);
@@ -246,6 +247,15 @@ TEST(PaperGallery, ReadmeShowsEveryFigureWithAClaimAndAMeasurement)
       EXPECT_NE(around.find("Paper:"), std::string::npos) << image;
       EXPECT_NE(around.find("Measured:"), std::string::npos) << image;
     }
+  }
+  // The figures whose claims are checked name the bound and the test beside the measurement.
+  for (const char* image : { "fig03_planes.png", "fig08_noisy_band.png" })
+  {
+    const std::size_t at = section.find(std::string("docs/images/") + image);
+    ASSERT_NE(at, std::string::npos) << image;
+    const std::string around = section.substr(at, 2800);
+    EXPECT_NE(around.find("Bound"), std::string::npos) << image;
+    EXPECT_NE(around.find(image[4] == '3' ? "PaperPlanes." : "PaperNoisyBand."), std::string::npos) << image;
   }
 }
 
