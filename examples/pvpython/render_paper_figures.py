@@ -219,8 +219,9 @@ def write_indexed_png(rgb, filename, colors=256):
         f.write(chunk(b"IEND", b""))
 
 
-def compose(grid, name):
-    """grid: list of rows (top first) of panel PNG files; rows of equal total width."""
+def compose(grid, name, colors=256):
+    """grid: list of rows (top first) of panel PNG files; rows of equal total width. colors: size
+    of the palette (the quantization's time grows with it)."""
     rows = []
     for row in grid:
         a = vtkImageAppend()
@@ -237,7 +238,7 @@ def compose(grid, name):
     for img in reversed(rows):  # image y grows upwards
         v.AddInputData(img)
     v.Update()
-    write_indexed_png(v.GetOutput(), path(name))
+    write_indexed_png(v.GetOutput(), path(name), colors)
     print("wrote", path(name), "(%d KB)" % (os.path.getsize(path(name)) // 1024))
 
 
@@ -477,9 +478,9 @@ def figure_3():
             if line.startswith("# crossing_over_h"):
                 cross = line.strip().split(",")[1]
     drawn = (0.25, 0.5, 1.0, 1.5, 2.0)
-    chart_origin, chart_scale = (50.0, -17.0 * h), (4.0, 2.4)  # chart units (x 0..20, y 0..10) -> world
-    b = (-3.3 * h, 4 * 7.0 * h + 3.3 * h, -21.5 * h, 3.9 * h)
-    w = 1250
+    chart_origin, chart_scale = (50.0, -15.0 * h), (4.0, 2.4)  # chart units (x 0..20, y 0..10) -> world
+    b = (-3.3 * h, 4 * 7.0 * h + 3.3 * h, -18.5 * h, 3.9 * h)
+    w = 1000
     v = panel_view(w, int(round(w * (b[3] - b[2]) / (b[1] - b[0]))), b)
     by_value(poly("fig03_residuals.vtp"), v, "Weight", "CELLS", (0.0, 1.0), "Reds", True, False, 1.5)
     lines(poly("fig03_circles.vtp"), v, LIGHT, 1.0)
@@ -502,17 +503,16 @@ def figure_3():
         dc = lines(selected(chart, ("Curve", curve)), v, color, width)
         dc.Scale = [chart_scale[0], chart_scale[1], 1.0]
         dc.Position = [chart_origin[0], chart_origin[1], 0.0]
-    fx, fy = fraction(chart_origin[0] - 10.0, chart_origin[1] + 10.6 * chart_scale[1])
+    fx, fy = fraction(chart_origin[0] - 30.0, chart_origin[1] + 10.6 * chart_scale[1])
     label_at(v, "e_MLS(x, a) against the height t of x (0 .. 2 h): blue, parallel plane; red, perpendicular plane; "
-             "grey: t = h / sqrt 2", fx, fy, 13)
+             "grey: t = h / sqrt 2", fx, fy, 12)
     title(v, "Figure 3: Levin's MLS (h = 5) at x = (0, t) (black dot) above a line of points 0.1 h apart; top "
-             "row: the plane (line) through x parallel to the line, a = (0, 1);\nbottom row: the plane "
-             "perpendicular to it, a = (1, 0). Grey dots: the points, darker = larger weight theta(x, p); "
-             "red: their distances to the plane, darker =\nmore weight (below, they lie along the line); "
-             "grey circle: radius h. e_MLS sums weight x squared distance. Up to h / sqrt 2 the parallel "
-             "plane has the\nlower energy, above it the perpendicular one: measured crossing %s h "
-             "(h / sqrt 2 = 0.7071 h)." % cross, 12, "Lower Left Corner")
-    compose([[snap(v, "fig03")]], "fig03_planes.png")
+             "row: the plane (line) through x\nparallel to the line, a = (0, 1); bottom row: the plane perpendicular "
+             "to it, a = (1, 0). Grey dots: the points, darker = larger\nweight theta(x, p); red: their distances to "
+             "the plane, darker = more weight (below, they lie along the line); grey circle: radius h.\ne_MLS sums "
+             "weight x squared distance. Up to h / sqrt 2 the parallel plane has the lower energy, above it the "
+             "perpendicular one:\nmeasured crossing %s h (h / sqrt 2 = 0.7071 h)." % cross, 12, "Lower Left Corner")
+    compose([[snap(v, "fig03")]], "fig03_planes.png", 64)
 
 
 def figure_4():
@@ -530,7 +530,7 @@ def figure_4():
     title(v, "Figure 4: the energy plot x + c e(x, a) a over directions a (blue) is narrowest along n(x); red: the "
              "best-fitting line,\nnormal to n(x). Levin's MLS 0.1 h, 0.5 h and 0.7 h above the line of Figure 5 "
              "(h = 5); stability = (e_max - e_min) / (e_max + e_min).", 12, "Lower Left Corner")
-    compose([[snap(v, "fig04")]], "fig04_legend.png")
+    compose([[snap(v, "fig04")]], "fig04_legend.png", 32)
 
 
 def figure_8():
@@ -546,13 +546,7 @@ def figure_8():
     for row, (key, name) in enumerate((("levin", "Levin's MLS energy e_MLS"), ("integral", "integral energy e_I"))):
         # A source has one display per view: each row reads its own copy.
         cloud = poly("noisy_curve_cloud.vtp")
-        band_lines = poly("fig08_band.vtp")
-        band_curves = selected(band_lines, ("Kind", 0))
-        band_paths = selected(band_lines, ("Kind", 1))
-        shown = []
-        shown.append(lines(band_curves, vg, LIGHT, 1.0))
-        shown.append(points(cloud, vg, GREY, 3))
-        shown.append(lines(poly("fig08_%s_glyphs.vtp" % key), vg, BLUE, 1.2))
+        shown = [lines(poly("fig08_%s_glyphs.vtp" % key), vg, BLUE, 1.2)]
         shown.append(lines(poly("fig08_%s_glyph_fits.vtp" % key), vg, RED, 1.2))
         for d in shown:
             d.Position = [0.0, row * gshift, d.Position[2]]
@@ -561,8 +555,7 @@ def figure_8():
         rng = percentiles(field, "LogEnergy", 0.02, 0.98)
         shown = [by_value(field, vb, "LogEnergy", "POINTS", rng, "Grayscale", False, False, 1.0, "Slice")]
         shown.append(lines(poly("fig08_%s_fits.vtp" % key), vb, [0.6, 0.6, 0.6], 1.5))
-        shown.append(lines(band_curves, vb, STEEL, 1.0))
-        shown.append(lines(band_paths, vb, STEEL, 0.5, 0.5))
+        shown.append(lines(poly("fig08_band.vtp"), vb, STEEL, 0.8))
         shown.append(points(cloud, vb, RED, 2))
         shown.append(points(poly("fig08_%s_turns.vtp" % key), vb, YELLOW, 6, True, 2.0))
         for d in shown:
@@ -571,7 +564,7 @@ def figure_8():
     right = snap(vb, "fig08_fields")
     lv, it = band["levin"], band["integral"]
     cap = caption_panel(1060, 100,
-                        "Figure 8: the noisy end of the noisy curve (h = 5; grey/red dots: the points); top Levin's MLS, "
+                        "Figure 8: the noisy end of the noisy curve (h = 5; red dots: the points); top Levin's MLS, "
                         "bottom the integral variant. Left: energy plots (blue) and\nbest-fitting lines (red) on a "
                         "lattice 0.4 h apart. Right: best-fitting lines (grey) over e(x, n(x)) (log scale, 2nd to 98th "
                         "percentile, dark = low); blue-grey:\nthe band, 2 sigma around the true curve, and %s paths "

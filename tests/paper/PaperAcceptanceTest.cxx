@@ -297,6 +297,26 @@ protected:
   }
 };
 
+TEST(PaperNoisyBandPaths, LeaveTheTrueCurveAlongItsNormal)
+{
+  // The paths' geometry (pss::noisyCurveFrame) against the scene's own distance: a sample s out
+  // along a path is s from the true curve (the curve's radius of curvature, at least 34 = 6.8 h,
+  // exceeds the paths' length of 1.6 h), and sigma is the generator's 3 (0.2 + 0.8 u).
+  const Scene noisy = MakeNoisyCurveScene(5.0);
+  const std::vector<BandPath> paths = NoisyBandPaths(noisy);
+  ASSERT_EQ(paths.size(), 26u);
+  for (const BandPath& p : paths)
+  {
+    EXPECT_NEAR(p.normal.norm(), 1.0, 1e-12);
+    EXPECT_NEAR(p.sigma, noisy.shape.noise * (0.2 + 0.8 * p.u), 1e-12);
+    for (double s : { 0.0, 0.5, 1.0, kBandPathLength })
+    {
+      EXPECT_NEAR(pss::distanceToShape(noisy.shape, p.foot + s * noisy.h * p.normal), s * noisy.h, 1e-6)
+        << "u = " << p.u << ", side " << p.side << ", s = " << s << " h";
+    }
+  }
+}
+
 TEST_F(PaperNoisyBand, LevinTurnsPast45DegreesInTheBandsOuterPart)
 {
   const BandMeasure& levin = Measure(kLevin);
