@@ -15,7 +15,12 @@
  * - fig06: the corner for Levin, normalized MLS, center of mass and integral: glyphs, sampled
  *   fields, streamlines of n, iso-contours of e(x, n(x)), surface points reached from 2000
  *   uniform random starts;
+ * - fig03 / fig04 (PaperFiguresExtra.cxx): two planes through a point above the line with the
+ *   weighted points and a chart of their energies; the legend of the energy plots;
  * - fig07: delta on a grid (intensity) and its iso-contours;
+ * - fig08 (PaperFiguresExtra.cxx): the noisy end of the curve (h = 5) for Levin and integral:
+ *   energy glyphs, best-fitting lines, e(x, n(x)) as an image, the angle of n along paths across
+ *   the noisy band (fig08_noisy_band.csv, all five definitions);
  * - fig09 / fig10: the noisy curve at h = 10 for Levin and integral: streamlines, iso-contours,
  *   minima (blue) and maxima (green) reached from random starts, near-singular points of n;
  * - paper_table.csv (also printed): per scene and variant, the fraction of start points that land
@@ -29,29 +34,21 @@
  * pvbatch (under xvfb-run when there is no display); without pvbatch the images are skipped with
  * a message and the data files remain.
  */
+#include "PaperFiguresExtra.h"
+#include "PaperOutput.h"
 #include "PaperScenes.h"
 
-#include "vtkPointSetSurfaceEnergyGlyphs.h"
-#include "vtkPointSetSurfaceFieldSampler.h"
-
-#include "vtkCellArray.h"
 #include "vtkContourFilter.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
-#include "vtkFieldData.h"
 #include "vtkImageData.h"
-#include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkMath.h"
 #include "vtkSMPTools.h"
 #include "vtkStaticPointLocator.h"
 #include "vtkStreamTracer.h"
-#include "vtkStringArray.h"
-#include "vtkXMLImageDataWriter.h"
-#include "vtkXMLPolyDataWriter.h"
 
 #include <algorithm>
 #include <chrono>
@@ -62,7 +59,6 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -78,7 +74,6 @@ namespace
 
 using namespace pss_paper;
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 struct Options
 {
@@ -144,124 +139,13 @@ Options Parse(int argc, char** argv)
 }
 
 // ---------------------------------------------------------------------------------------------
-// Files
-
-fs::path OutDir;
+// Fields on grids, streamlines, contours: VTK filters over the sampler's output (the files, the
+// sampler, the glyphs and the checks shared with Figures 3, 4 and 8 are in PaperOutput.h)
 
 // Spacing of the sampling grids, in units of the scene's h.
 constexpr double kCornerGridSpacing = 0.1;
 constexpr double kDeltaGridSpacing = 0.1;
 constexpr double kWideGridSpacing = 0.15;
-
-// Writes to a temporary name, then renames: a reader (or a second demo writing the same folder)
-// never sees a half-written file.
-template <class WriterT, class DataT>
-void WriteXML(DataT* data, const std::string& name)
-{
-  const fs::path target = OutDir / name;
-  const fs::path temporary = OutDir / ("." + name + ".tmp" + std::to_string(getpid()));
-  vtkNew<WriterT> writer;
-  writer->SetFileName(temporary.string().c_str());
-  writer->SetInputData(data);
-  writer->SetDataModeToAppended();
-  writer->SetCompressorTypeToZLib();
-  if (!writer->Write() || writer->GetErrorCode() != 0)
-  {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw std::runtime_error("cannot write " + target.string());
-  }
-  fs::rename(temporary, target);
-}
-
-void Write(vtkPolyData* data, const std::string& name)
-{
-  WriteXML<vtkXMLPolyDataWriter>(data, name);
-}
-
-void Write(vtkImageData* data, const std::string& name)
-{
-  WriteXML<vtkXMLImageDataWriter>(data, name);
-}
-
-// A title and the h of a figure's data, as field data (the renderer reads them).
-void Label(vtkDataObject* data, const std::string& title, double h)
-{
-  vtkNew<vtkStringArray> t;
-  t->SetName("Title");
-  t->InsertNextValue(title);
-  data->GetFieldData()->AddArray(t);
-  vtkNew<vtkDoubleArray> s;
-  s->SetName("SceneH");
-  s->InsertNextValue(h);
-  data->GetFieldData()->AddArray(s);
-}
-
-// ---------------------------------------------------------------------------------------------
-// Fields on grids, streamlines, contours: VTK filters over the sampler's output
-
-double Percentile(std::vector<double> v, double q)
-{
-  if (v.empty())
-  {
-    return 0.0;
-  }
-  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size() - 1)));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
-
-/**
- * n, e, delta, g, stability on a grid over the cloud's bounds grown by 3 h, n oriented for stream
- * tracers (PROPAGATE), plus `LogEnergy` = log10 e (floored at the smallest positive value: Levin's
- * energy may underflow to 0 far away).
- */
-vtkSmartPointer<vtkImageData> SampleField(const Scene& scene, int variant, double spacingInH)
-{
-  const std::vector<double> b = GrownBounds(scene, kStartMargin);
-  const double spacing = spacingInH * scene.h;
-  const int nx = static_cast<int>(std::lround((b[1] - b[0]) / spacing)) + 1;
-  const int ny = static_cast<int>(std::lround((b[3] - b[2]) / spacing)) + 1;
-  vtkNew<vtkPointSetSurfaceFieldSampler> sampler;
-  sampler->SetSurface(MakeSurface(scene, variant));
-  sampler->SetSourceData(scene.cloud);
-  sampler->GenerateSamplingGridOn();
-  sampler->SetSampleDimensions(nx, ny, 1);
-  sampler->SetSamplingMargin(kStartMargin);
-  sampler->SetOrientationModeToPropagate();
-  sampler->Update();
-  auto field = vtkSmartPointer<vtkImageData>::New();
-  field->DeepCopy(vtkImageData::SafeDownCast(sampler->GetOutput()));
-  if (field->GetNumberOfPoints() != static_cast<vtkIdType>(nx) * ny)
-  {
-    throw std::runtime_error("the field sampler failed on scene " + scene.name);
-  }
-
-  vtkDataArray* energy = field->GetPointData()->GetArray("Energy");
-  double floor = std::numeric_limits<double>::infinity();
-  for (vtkIdType i = 0; i < energy->GetNumberOfTuples(); ++i)
-  {
-    const double e = energy->GetTuple1(i);
-    if (e > 0.0)
-    {
-      floor = std::min(floor, e);
-    }
-  }
-  if (!std::isfinite(floor))
-  {
-    floor = 1e-300;
-  }
-  vtkNew<vtkDoubleArray> logEnergy;
-  logEnergy->SetName("LogEnergy");
-  logEnergy->SetNumberOfTuples(energy->GetNumberOfTuples());
-  for (vtkIdType i = 0; i < energy->GetNumberOfTuples(); ++i)
-  {
-    logEnergy->SetValue(i, std::log10(std::max(energy->GetTuple1(i), floor)));
-  }
-  field->GetPointData()->AddArray(logEnergy);
-  Label(field, VariantTitle(variant), scene.h);
-  return field;
-}
 
 /// Streamlines of the sampled n, seeded on a lattice of spacing @p seedSpacingInH, both ways.
 vtkSmartPointer<vtkPolyData> Streamlines(vtkImageData* field, const Scene& scene, double seedSpacingInH,
@@ -469,33 +353,6 @@ vtkSmartPointer<vtkPolyData> Extrema(vtkPolyData* projection, int type)
   return MakePointCloud(points);
 }
 
-struct Glyphs
-{
-  vtkSmartPointer<vtkPolyData> glyphs;
-  vtkSmartPointer<vtkPolyData> fits;
-};
-
-/// Energy plots x + c e(x, a) a (each glyph scaled on its own) and best-fitting lines at @p samples.
-Glyphs EnergyGlyphs(const Scene& scene, int variant, const std::vector<pss::Vec3>& samples, double glyphSizeInH,
-  double segmentLengthInH)
-{
-  vtkNew<vtkPointSetSurfaceEnergyGlyphs> glyphs;
-  glyphs->SetSurface(MakeSurface(scene, variant));
-  glyphs->SetInputData(scene.cloud);
-  glyphs->SetSamplePointsData(MakePointCloud(samples));
-  glyphs->SetResolution(96);
-  glyphs->SetScaleModeToPerGlyph();
-  glyphs->SetGlyphSize(glyphSizeInH);
-  glyphs->SetSegmentLength(segmentLengthInH);
-  glyphs->Update();
-  Glyphs out;
-  out.glyphs = vtkSmartPointer<vtkPolyData>::New();
-  out.glyphs->DeepCopy(glyphs->GetOutput(0));
-  out.fits = vtkSmartPointer<vtkPolyData>::New();
-  out.fits->DeepCopy(glyphs->GetOutput(1));
-  Label(out.glyphs, VariantTitle(variant), scene.h);
-  return out;
-}
 
 // ---------------------------------------------------------------------------------------------
 // The table and the checks
@@ -511,54 +368,6 @@ struct Row
   bool halfWidthBounded = true;
 };
 
-struct Check
-{
-  std::string name;
-  std::string claim;
-  double value = 0.0;
-  std::string bound;
-  bool pass = false;
-};
-
-std::string Fixed(double v, int digits)
-{
-  if (std::isnan(v))
-  {
-    return "-";
-  }
-  if (std::isinf(v))
-  {
-    return "none";
-  }
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
-
-std::string JsonNumber(double v)
-{
-  if (!std::isfinite(v))
-  {
-    return "null";
-  }
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-std::string JsonString(const std::string& s)
-{
-  std::string out = "\"";
-  for (char c : s)
-  {
-    if (c == '"' || c == '\\')
-    {
-      out += '\\';
-    }
-    out += c;
-  }
-  return out + "\"";
-}
 
 void PrintAndWriteTable(const std::vector<Row>& rows)
 {
@@ -596,25 +405,6 @@ void PrintAndWriteTable(const std::vector<Row>& rows)
     kOnCurveDistance, kSpuriousDistance, kNoFlipHeight);
 }
 
-bool PrintAndWriteChecks(const std::vector<Check>& checks)
-{
-  std::printf("\nchecked claims\n");
-  bool all = true;
-  std::ofstream json(OutDir / "paper_checks.json");
-  json << "{\n  \"checks\": [\n";
-  for (std::size_t i = 0; i < checks.size(); ++i)
-  {
-    const Check& c = checks[i];
-    all = all && c.pass;
-    std::printf("  [%s] %-38s %10s   (%s)  %s\n", c.pass ? "PASS" : "FAIL", c.name.c_str(), Fixed(c.value, 4).c_str(),
-      c.bound.c_str(), c.claim.c_str());
-    json << "    {\"name\": " << JsonString(c.name) << ", \"claim\": " << JsonString(c.claim)
-         << ", \"value\": " << JsonNumber(c.value) << ", \"bound\": " << JsonString(c.bound)
-         << ", \"pass\": " << (c.pass ? "true" : "false") << "}" << (i + 1 < checks.size() ? "," : "") << "\n";
-  }
-  json << "  ],\n  \"all_pass\": " << (all ? "true" : "false") << "\n}\n";
-  return all;
-}
 
 // ---------------------------------------------------------------------------------------------
 // What each definition does at the corner
@@ -767,20 +557,6 @@ void Render(const Options& opt)
   std::printf("rendered the PNG images in %.1f s (log: %s)\n", seconds, (OutDir / "render.log").string().c_str());
 }
 
-double Since(Clock::time_point t0)
-{
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// One line per finished step: its wall time and the time since the start.
-Clock::time_point ProgramStart = Clock::now();
-Clock::time_point LastStep = ProgramStart;
-void Done(const std::string& what)
-{
-  std::printf("  [%6.1f s] %-58s %6.1f s\n", Since(ProgramStart), what.c_str(), Since(LastStep));
-  std::fflush(stdout);
-  LastStep = Clock::now();
-}
 
 } // namespace
 
@@ -870,6 +646,11 @@ int main(int argc, char** argv)
       }
       Done("fig05: energy glyphs and best-fitting lines");
     }
+    // Figures 3 and 4 (PaperFiguresExtra.cxx): two planes above the same line, and the legend of
+    // the energy plots.
+    const Figure3Result figure3 = Figure3(line, checks);
+    Figure4(line);
+    Done("fig03, fig04: plane energies above the line, legend glyphs");
 
     // ---- Figures 1 and 2: the noisy curve, h = 5 -----------------------------------------------
     const Scene noisy = MakeNoisyCurveScene(5.0);
@@ -929,6 +710,8 @@ int main(int argc, char** argv)
         static_cast<long long>(ds.aboveSquaredDistance), static_cast<long long>(ds.samples), ds.farRatioMin,
         ds.farRatioMax, static_cast<long long>(ds.minima), ds.minimaMaxDistance);
     }
+    // Figure 8 (PaperFiguresExtra.cxx): n across the noisy band.
+    const std::vector<BandMeasure> band = Figure8(noisy, checks);
 
     // ---- Figure 6: the corner ------------------------------------------------------------------
     const Scene corner = MakeCornerScene();
@@ -1043,6 +826,8 @@ int main(int argc, char** argv)
 
     PrintAndWriteTable(rows);
     PrintAndWriteCornerBreakdown(cornerBreakdown);
+    PrintAndWriteFigure3(figure3);
+    PrintAndWriteNoisyBand(band);
     const bool allPass = PrintAndWriteChecks(checks);
     const double computeSeconds = Since(start);
     std::printf("\ncomputed in %.1f s; data in %s\n", computeSeconds, OutDir.string().c_str());

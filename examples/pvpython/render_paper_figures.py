@@ -6,7 +6,8 @@ pss-paper-figures wrote. Reads them with stock ParaView readers only (no plugin 
     pvbatch render_paper_figures.py OUTDIR                  (with a display)
 
 Writes OUTDIR/fig01_02_projection_lines.png, fig05_line_glyphs.png, fig06_corner.png,
-fig07_delta.png, fig09_levin_h10.png and fig10_integral_h10.png. Each panel is rendered on its
+fig07_delta.png, fig09_levin_h10.png, fig10_integral_h10.png, fig03_planes.png, fig04_legend.png and
+fig08_noisy_band.png. Each panel is rendered on its
 own (2D, parallel projection) and the panels are put together with vtkImageAppend, then saved as
 8-bit palette PNGs (small enough for the README). PSS_KEEP_PANELS=1 keeps the single panels in
 OUTDIR/.panels.
@@ -19,7 +20,7 @@ import sys
 import zlib
 
 from paraview.simple import (CreateView, Delete, GetDisplayProperties, GetColorTransferFunction, Line,
-                             Render, SaveScreenshot, Show, Text, Threshold, XMLImageDataReader,
+                             PointSource, Render, SaveScreenshot, Show, Text, Threshold, XMLImageDataReader,
                              XMLPolyDataReader, ColorBy)
 from vtkmodules.vtkFiltersCore import vtkImageAppend
 from vtkmodules.vtkImagingColor import vtkImageQuantizeRGBToIndex
@@ -218,8 +219,9 @@ def write_indexed_png(rgb, filename, colors=256):
         f.write(chunk(b"IEND", b""))
 
 
-def compose(grid, name):
-    """grid: list of rows (top first) of panel PNG files; rows of equal total width."""
+def compose(grid, name, colors=256):
+    """grid: list of rows (top first) of panel PNG files; rows of equal total width. colors: size
+    of the palette (the quantization's time grows with it)."""
     rows = []
     for row in grid:
         a = vtkImageAppend()
@@ -236,7 +238,7 @@ def compose(grid, name):
     for img in reversed(rows):  # image y grows upwards
         v.AddInputData(img)
     v.Update()
-    write_indexed_png(v.GetOutput(), path(name))
+    write_indexed_png(v.GetOutput(), path(name), colors)
     print("wrote", path(name), "(%d KB)" % (os.path.getsize(path(name)) // 1024))
 
 
@@ -431,6 +433,152 @@ def figures_9_10(rows):
         compose(panels, stem + "_h10.png")
 
 
+def read_csv(name):
+    with open(path(name)) as f:
+        return [r for r in csv.DictReader(f) if not next(iter(r.values()), "").startswith("#")]
+
+
+def selected(src, *conditions):
+    """Cells of src whose cell arrays equal the given values: conditions = (array, value), ..."""
+    out = src
+    for array, value in conditions:
+        out = subset(out, array, "CELLS", value, value)
+    return out
+
+
+def percentiles(src, name, lo, hi):
+    """The lo and hi quantiles of a point array (an image's intensity range that ignores outliers)."""
+    from paraview import servermanager
+    data = servermanager.Fetch(src)
+    a = data.GetPointData().GetArray(name)
+    v = sorted(a.GetValue(i) for i in range(a.GetNumberOfTuples()))
+    return (v[int(lo * (len(v) - 1))], v[int(hi * (len(v) - 1))])
+
+
+def label_at(view, text, fx, fy, size=13):
+    """Text at a fraction (fx, fy) of the view (its lower left corner there)."""
+    t = Text(Text=text)
+    d = Show(t, view)
+    d.WindowLocation = "Any Location"
+    d.Position = [fx, fy]
+    d.FontSize = size
+    d.Color = BLACK
+    return t
+
+
+def figure_3():
+    """One view: pss-paper-figures lays the ten panels out (PaperFiguresExtra.cxx, Figure3Offset:
+    columns 7 h apart, the perpendicular row 5.6 h below the parallel one); the chart is drawn below
+    them (scaled by the display) and the caption below that."""
+    h = 5.0
+    energies = {float(r["height_over_h"]): r for r in read_csv("fig03_plane_energies.csv")}
+    cross = ""
+    with open(path("fig03_plane_energies.csv")) as f:
+        for line in f:
+            if line.startswith("# crossing_over_h"):
+                cross = line.strip().split(",")[1]
+    drawn = (0.25, 0.5, 1.0, 1.5, 2.0)
+    chart_origin, chart_scale = (50.0, -15.0 * h), (4.0, 2.4)  # chart units (x 0..20, y 0..10) -> world
+    b = (-3.3 * h, 4 * 7.0 * h + 3.3 * h, -18.5 * h, 3.9 * h)
+    w = 1000
+    v = panel_view(w, int(round(w * (b[3] - b[2]) / (b[1] - b[0]))), b)
+    by_value(poly("fig03_residuals.vtp"), v, "Weight", "CELLS", (0.0, 1.0), "Reds", True, False, 1.5)
+    lines(poly("fig03_circles.vtp"), v, LIGHT, 1.0)
+    lines(poly("fig03_planes.vtp"), v, BLUE, 2.5)
+    d = by_value(poly("fig03_points.vtp"), v, "Weight", "POINTS", (0.0, 1.0), "Grayscale", True, False, 1.0, "Points")
+    d.PointSize = 4
+    d.Position = [0.0, 0.0, 1.0]
+    points(poly("fig03_x.vtp"), v, BLACK, 9, True, 2.0)
+
+    def fraction(x, y):
+        return [(x - b[0]) / (b[1] - b[0]), (y - b[2]) / (b[3] - b[2])]
+
+    for plane, label in ((0, "parallel"), (1, "perpendicular")):
+        for k, t in enumerate(drawn):
+            e = float(energies[t]["energy_%s" % label])
+            fx, fy = fraction(7.0 * h * k - 1.6 * h, -5.6 * h * plane + 3.25 * h)
+            label_at(v, "t = %.2f h: e = %.1f" % (t, e), fx, fy, 12)
+    chart = poly("fig03_chart.vtp")
+    for curve, color, width in ((0, BLUE, 2.5), (1, RED, 2.5), (2, GREY, 1.0), (4, BLACK, 1.0)):
+        dc = lines(selected(chart, ("Curve", curve)), v, color, width)
+        dc.Scale = [chart_scale[0], chart_scale[1], 1.0]
+        dc.Position = [chart_origin[0], chart_origin[1], 0.0]
+    fx, fy = fraction(chart_origin[0] - 30.0, chart_origin[1] + 10.6 * chart_scale[1])
+    label_at(v, "e_MLS(x, a) against the height t of x (0 .. 2 h): blue, parallel plane; red, perpendicular plane; "
+             "grey: t = h / sqrt 2", fx, fy, 12)
+    title(v, "Figure 3: Levin's MLS (h = 5) at x = (0, t) (black dot) above a line of points 0.1 h apart; top "
+             "row: the plane (line) through x\nparallel to the line, a = (0, 1); bottom row: the plane perpendicular "
+             "to it, a = (1, 0). Grey dots: the points, darker = larger\nweight theta(x, p); red: their distances to "
+             "the plane, darker = more weight (below, they lie along the line); grey circle: radius h.\ne_MLS sums "
+             "weight x squared distance. Up to h / sqrt 2 the parallel plane has the lower energy, above it the "
+             "perpendicular one:\nmeasured crossing %s h (h / sqrt 2 = 0.7071 h)." % cross, 12, "Lower Left Corner")
+    compose([[snap(v, "fig03")]], "fig03_planes.png", 64)
+
+
+def figure_4():
+    """One view: pss-paper-figures puts the three samples in columns -1.2 h, 0 and 1.2 h."""
+    legend = read_csv("fig04_legend.csv")
+    h = 5.0
+    names = ("strong minimum: dumbbell", "weaker minimum: ellipse", "unstable: circle")
+    b = (-1.8 * h, 1.8 * h, -0.55 * h, 1.45 * h)
+    v = panel_view(780, int(round(780 * (b[3] - b[2]) / (b[1] - b[0]))), b)
+    lines(poly("fig04_glyphs.vtp"), v, BLUE, 2.5)
+    lines(poly("fig04_fits.vtp"), v, RED, 2.0)
+    for k, r in enumerate(legend):
+        fx = (float(r["x_over_h"]) * h - 0.5 * h - b[0]) / (b[1] - b[0])
+        label_at(v, "%s\nat %s h, stability %s" % (names[k], r["height_over_h"], r["stability"]), fx, 0.88, 12)
+    title(v, "Figure 4: the energy plot x + c e(x, a) a over directions a (blue) is narrowest along n(x); red: the "
+             "best-fitting line,\nnormal to n(x). Levin's MLS 0.1 h, 0.5 h and 0.7 h above the line of Figure 5 "
+             "(h = 5); stability = (e_max - e_min) / (e_max + e_min).", 12, "Lower Left Corner")
+    compose([[snap(v, "fig04")]], "fig04_legend.png", 32)
+
+
+def figure_8():
+    """Two views: the glyph panels (Levin above, integral below, shifted by the display) and the
+    fields (the same), then the caption."""
+    band = {r["variant"]: r for r in read_csv("fig08_noisy_band.csv")}
+    gw = (163.0, 197.0, -32.0, 2.0)
+    big = (128.0, 204.0, -40.0, 10.0)
+    gshift = -(gw[3] - gw[2]) - 1.0
+    bshift = -(big[3] - big[2]) - 1.5
+    vg = panel_view(420, 850, (gw[0], gw[1], gw[2] + gshift, gw[3]))
+    vb = panel_view(640, 850, (big[0], big[1], big[2] + bshift, big[3]))
+    for row, (key, name) in enumerate((("levin", "Levin's MLS energy e_MLS"), ("integral", "integral energy e_I"))):
+        # A source has one display per view: each row reads its own copy.
+        cloud = poly("noisy_curve_cloud.vtp")
+        shown = [lines(poly("fig08_%s_glyphs.vtp" % key), vg, BLUE, 1.2)]
+        shown.append(lines(poly("fig08_%s_glyph_fits.vtp" % key), vg, RED, 1.2))
+        for d in shown:
+            d.Position = [0.0, row * gshift, d.Position[2]]
+        label_at(vg, name, 0.01, 0.97 - 0.5 * row, 14)
+        field = image("fig08_%s_field.vti" % key)
+        rng = percentiles(field, "LogEnergy", 0.02, 0.98)
+        shown = [by_value(field, vb, "LogEnergy", "POINTS", rng, "Grayscale", False, False, 1.0, "Slice")]
+        shown.append(lines(poly("fig08_%s_fits.vtp" % key), vb, [0.6, 0.6, 0.6], 1.5))
+        shown.append(lines(poly("fig08_band.vtp"), vb, STEEL, 0.8))
+        shown.append(points(cloud, vb, RED, 2))
+        shown.append(points(poly("fig08_%s_turns.vtp" % key), vb, YELLOW, 6, True, 2.0))
+        for d in shown:
+            d.Position = [0.0, row * bshift, d.Position[2]]
+    left = snap(vg, "fig08_glyphs")
+    right = snap(vb, "fig08_fields")
+    lv, it = band["levin"], band["integral"]
+    cap = caption_panel(1060, 100,
+                        "Figure 8: the noisy end of the noisy curve (h = 5; red dots: the points); top Levin's MLS, "
+                        "bottom the integral variant. Left: energy plots (blue) and\nbest-fitting lines (red) on a "
+                        "lattice 0.4 h apart. Right: best-fitting lines (grey) over e(x, n(x)) (log scale, 2nd to 98th "
+                        "percentile, dark = low); blue-grey:\nthe band, 2 sigma around the true curve, and %s paths "
+                        "across it; yellow: where n first passes 45 degrees from the true normal. n_MLS does so in the "
+                        "band's\nouter part (median %s sigma = %s h out; on %s/%s paths within the band), n_I on %s/%s "
+                        "paths; median largest angle in the band %s deg (MLS) and %s deg (e_I);\nmedian total "
+                        "variation of n along a path in the band %s deg (MLS) and %s deg (e_I)."
+                        % (lv["paths"], lv["median_turn_over_sigma"], lv["median_turn_over_h"],
+                           lv["paths_past_45_in_band"], lv["paths"], it["paths_past_45_in_band"], it["paths"],
+                           lv["median_max_angle_in_band_deg"], it["median_max_angle_in_band_deg"],
+                           lv["median_total_variation_in_band_deg"], it["median_total_variation_in_band_deg"]), 12)
+    compose([[left, right], [cap]], "fig08_noisy_band.png")
+
+
 def main():
     rows = table()
     flip = rows[("line", "levin")]["flip_height_over_h"]
@@ -439,6 +587,9 @@ def main():
     figure_6(rows)
     figure_7()
     figures_9_10(rows)
+    figure_3()
+    figure_4()
+    figure_8()
     if not os.environ.get("PSS_KEEP_PANELS"):
         shutil.rmtree(PANELS, ignore_errors=True)
 

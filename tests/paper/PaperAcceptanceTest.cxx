@@ -2,6 +2,7 @@
 // The acceptance numbers of the main demo (issue "Reproduce the paper"): each bound is one test.
 // The scenes and measurements are the demo's own (examples/PaperScenes.h), so what passes here is
 // what pss-paper-figures prints in its table.
+#include "PaperMeasures.h"
 #include "PaperScenes.h"
 
 #include "vtkDataArray.h"
@@ -13,6 +14,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -227,8 +230,9 @@ TEST(PaperGallery, ReadmeShowsEveryFigureWithAClaimAndAMeasurement)
   ASSERT_NE(end, std::string::npos);
   ASSERT_LT(begin, end);
   const std::string section = readme.substr(begin, end - begin);
-  for (const char* image : { "fig01_02_projection_lines.png", "fig05_line_glyphs.png", "fig06_corner.png",
-         "fig07_delta.png", "fig09_levin_h10.png", "fig10_integral_h10.png" })
+  for (const char* image : { "fig01_02_projection_lines.png", "fig03_planes.png", "fig04_legend.png",
+         "fig05_line_glyphs.png", "fig06_corner.png", "fig07_delta.png", "fig08_noisy_band.png",
+         "fig09_levin_h10.png", "fig10_integral_h10.png" })
   {
     const std::string link = std::string("docs/images/") + image;
     const std::size_t at = section.find(link);
@@ -244,4 +248,93 @@ TEST(PaperGallery, ReadmeShowsEveryFigureWithAClaimAndAMeasurement)
       EXPECT_NE(around.find("Measured:"), std::string::npos) << image;
     }
   }
+  // The figures whose claims are checked name the bound and the test beside the measurement.
+  for (const char* image : { "fig03_planes.png", "fig08_noisy_band.png" })
+  {
+    const std::size_t at = section.find(std::string("docs/images/") + image);
+    ASSERT_NE(at, std::string::npos) << image;
+    const std::string around = section.substr(at, 2800);
+    EXPECT_NE(around.find("Bound"), std::string::npos) << image;
+    EXPECT_NE(around.find(image[4] == '3' ? "PaperPlanes." : "PaperNoisyBand."), std::string::npos) << image;
+  }
+}
+
+// ---- Figure 3: two planes through x above a dense line -------------------------------------------
+
+TEST(PaperPlanes, PerpendicularPlaneWinsAtHOverSqrt2AtEveryColumn)
+{
+  const Scene line = MakeLineScene();
+  for (double x : LineColumns(line))
+  {
+    const double crossing = PerpendicularPlaneWinsHeight(line, kLevin, x, 2.0);
+    std::cout << std::setprecision(6) << "column x = " << x << ": e_MLS of the perpendicular plane drops below the parallel one's at "
+              << crossing << " h\n";
+    EXPECT_NEAR(crossing, kPlaneCrossingTruth, kPlaneCrossingTolerance) << "column x = " << x;
+  }
+}
+
+// ---- Figure 8: n across the noisy band of the noisy curve (h = 5) --------------------------------
+
+class PaperNoisyBand : public ::testing::Test
+{
+protected:
+  static const BandMeasure& Measure(int variant)
+  {
+    static std::map<int, BandMeasure> cache;
+    auto it = cache.find(variant);
+    if (it == cache.end())
+    {
+      it = cache.emplace(variant, MeasureNoisyBand(MakeNoisyCurveScene(5.0), variant)).first;
+      const BandMeasure& m = it->second;
+      std::cout << VariantName(variant) << ": median angle at the curve " << m.medianAngleAtCurve
+                << " deg, median turn past 45 deg at " << m.medianTurnOverSigma << " sigma (" << m.medianTurnOverH
+                << " h), in the outer part on " << m.turnInOuterPartFraction << " of the paths, max angle in the band "
+                << m.maxAngleInBand << " deg (median over the paths " << m.medianMaxAngleInBand << ", " << m.pathsPastTurnInBand
+                << " paths past 45 deg), median total variation in the band " << m.medianVariationInBand
+                << " deg\n";
+    }
+    return it->second;
+  }
+};
+
+TEST(PaperNoisyBandPaths, LeaveTheTrueCurveAlongItsNormal)
+{
+  // The paths' geometry (pss::noisyCurveFrame) against the scene's own distance: a sample s out
+  // along a path is s from the true curve (the curve's radius of curvature, at least 34 = 6.8 h,
+  // exceeds the paths' length of 1.6 h), and sigma is the generator's 3 (0.2 + 0.8 u).
+  const Scene noisy = MakeNoisyCurveScene(5.0);
+  const std::vector<BandPath> paths = NoisyBandPaths(noisy);
+  ASSERT_EQ(paths.size(), 26u);
+  for (const BandPath& p : paths)
+  {
+    EXPECT_NEAR(p.normal.norm(), 1.0, 1e-12);
+    EXPECT_NEAR(p.sigma, noisy.shape.noise * (0.2 + 0.8 * p.u), 1e-12);
+    for (double s : { 0.0, 0.5, 1.0, kBandPathLength })
+    {
+      EXPECT_NEAR(pss::distanceToShape(noisy.shape, p.foot + s * noisy.h * p.normal), s * noisy.h, 1e-6)
+        << "u = " << p.u << ", side " << p.side << ", s = " << s << " h";
+    }
+  }
+}
+
+TEST_F(PaperNoisyBand, LevinTurnsPast45DegreesInTheBandsOuterPart)
+{
+  const BandMeasure& levin = Measure(kLevin);
+  EXPECT_GE(levin.medianTurnOverSigma, kLevinTurnLowSigmas);
+  EXPECT_LE(levin.medianTurnOverSigma, kLevinTurnHighSigmas);
+}
+
+TEST_F(PaperNoisyBand, IntegralStaysCloseToTheTrueNormalInTheBand)
+{
+  const BandMeasure& integral = Measure(kIntegral);
+  EXPECT_LE(integral.medianMaxAngleInBand, kIntegralMedianMaxAngleInBand)
+    << "largest angle over all paths " << integral.maxAngleInBand << " deg";
+}
+
+TEST_F(PaperNoisyBand, IntegralTurnsMoreSmoothlyThanLevin)
+{
+  const double levin = Measure(kLevin).medianVariationInBand;
+  const double integral = Measure(kIntegral).medianVariationInBand;
+  ASSERT_GT(integral, 0.0);
+  EXPECT_GE(levin / integral, kSmoothnessFactor) << "Levin " << levin << " deg, integral " << integral << " deg";
 }

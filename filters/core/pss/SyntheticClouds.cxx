@@ -65,6 +65,18 @@ Vec3 sineArc(double size, double u)
   return Vec3(size * u, 0.15 * size * std::sin(2.0 * M_PI * u), 0.0);
 }
 
+// Its derivative d/du.
+Vec3 sineArcTangent(double size, double u)
+{
+  return Vec3(size, 0.3 * M_PI * size * std::cos(2.0 * M_PI * u), 0.0);
+}
+
+// The NoisyCurve's noise grows from a fifth of spec.noise at u = 0 to all of it at u = 1.
+double noisyCurveNoiseScale(double u)
+{
+  return 0.2 + 0.8 * u;
+}
+
 void cornerEnds(const CloudSpec& s, Vec3& left, Vec3& right)
 {
   const double half = 0.5 * s.cornerAngle * M_PI / 180.0;
@@ -99,7 +111,7 @@ Vec3 shapePoint(const CloudSpec& s, PortableRandom& rng, double& noiseScale)
       // Density 1.5 - u by inverting its cumulative distribution 1.5 u - u^2 / 2; the noise
       // grows from a fifth of its value at u = 0 to all of it at u = 1.
       const double u = 1.5 - std::sqrt(2.25 - 2.0 * rng.uniform());
-      noiseScale = 0.2 + 0.8 * u;
+      noiseScale = noisyCurveNoiseScale(u);
       return sineArc(s.size, u);
     }
     case Scene::Plane:
@@ -282,6 +294,24 @@ double distanceToShape(const CloudSpec& s, const Vec3& xIn)
     }
   }
   return std::numeric_limits<double>::quiet_NaN();
+}
+
+CurveFrame noisyCurveFrame(const CloudSpec& spec, double u)
+{
+  if (spec.scene != Scene::NoisyCurve)
+  {
+    throw std::invalid_argument("noisyCurveFrame: the scene is not the noisy curve");
+  }
+  if (!(u >= 0.0 && u <= 1.0))
+  {
+    throw std::invalid_argument("noisyCurveFrame: the parameter must be in [0, 1]");
+  }
+  CurveFrame f;
+  f.point = sineArc(spec.size, u);
+  const Vec3 t = sineArcTangent(spec.size, u).normalized();
+  f.normal = Vec3(-t.y(), t.x(), 0.0);
+  f.sigma = spec.noise * noisyCurveNoiseScale(u);
+  return f;
 }
 
 } // namespace pss

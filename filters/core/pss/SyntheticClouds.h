@@ -52,4 +52,17 @@ std::vector<Vec3> generateCloud(const CloudSpec& spec);
 /// Distance from @p x to the noise-free shape of @p spec (in 2D, to its xy cross-section).
 double distanceToShape(const CloudSpec& spec, const Vec3& x);
 
+/// A point of the NoisyCurve's noise-free centre line, its unit normal (in the xy-plane, the
+/// side of +y where the curve is horizontal) and the noise sigma of the points drawn there.
+struct CurveFrame
+{
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();
+  double sigma = 0.0;
+};
+
+/// The NoisyCurve at parameter @p u in [0, 1] (x = size u): what generateCloud draws around.
+/// Throws std::invalid_argument for another scene or a u outside [0, 1].
+CurveFrame noisyCurveFrame(const CloudSpec& spec, double u);
+
 } // namespace pss
