@@ -8,6 +8,7 @@
 #include "vtkDataArray.h"
 #include "vtkDataCompressor.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkLZ4DataCompressor.h"
@@ -2362,6 +2363,22 @@ vtkSmartPointer<vtkDataSet> ReadDataSet(const std::string& path)
 namespace
 {
 
+// VTK's PLY writer keeps only float normals (nx, ny, nz); ours are double.
+vtkSmartPointer<vtkPolyData> WithFloatNormals(vtkPolyData* mesh)
+{
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(mesh);
+  vtkDataArray* normals = mesh->GetPointData()->GetNormals();
+  if (normals && normals->GetDataType() != VTK_FLOAT)
+  {
+    vtkNew<vtkFloatArray> single;
+    single->DeepCopy(normals);
+    single->SetName(normals->GetName());
+    out->GetPointData()->SetNormals(single);
+  }
+  return out;
+}
+
 // STL and OBJ hold geometry only (OBJ also the normals): for meshes, through VTK's own writers.
 void WriteMeshOnly(vtkPolyData* mesh, const std::string& path, const std::string& ext)
 {
@@ -2419,7 +2436,7 @@ void WriteDataSet(vtkDataSet* data, const std::string& path, Compression compres
   {
     vtkNew<vtkPLYWriter> writer;
     writer->SetFileName(path.c_str());
-    writer->SetInputData(AsPolyData(data));
+    writer->SetInputData(WithFloatNormals(AsPolyData(data)));
     writer->SetFileTypeToBinary();
     if (writer->Write() == 0)
     {

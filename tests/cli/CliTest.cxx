@@ -221,3 +221,44 @@ TEST(Cli, StanfordBunnyScans)
             << before << " -> " << after << "\n";
   EXPECT_LT(after, before);
 }
+
+TEST(Cli, MeshWritesEveryMeshFormat)
+{
+  const std::string cloud = TempPath("mesh-sphere-cloud.vtp");
+  CommandResult r = RunCommand(Pss() + " generate --scene sphere --dimension 3 --count 8000 --size 20 --noise 0.01 -o " + cloud);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* ext : { ".vtp", ".ply", ".stl", ".obj" })
+  {
+    const std::string out = TempPath(std::string("mesh-sphere") + ext);
+    std::remove(out.c_str());
+    r = RunCommand(Pss() + " mesh " + cloud + " --h 1 --verbose -o " + out);
+    ASSERT_EQ(r.exitCode, 0) << ext << ": " << r.output;
+    std::ifstream written(out, std::ios::binary | std::ios::ate);
+    EXPECT_GT(static_cast<long long>(written.tellg()), 10000) << ext;
+    // --verbose: the stages and the counts of the mesh issue.
+    for (const char* text : { "mesh stages: band", "triangles", "BandCells", "Components 1", "BoundaryEdges 0" })
+    {
+      EXPECT_NE(r.output.find(text), std::string::npos) << ext << ": " << text << "\n" << r.output;
+    }
+  }
+}
+
+TEST(Cli, MeshRefusesBadCellsAndBands)
+{
+  const std::string cloud = TempPath("mesh-plane.vtp");
+  CommandResult r = RunCommand(Pss() + " generate --scene plane --dimension 3 --count 2000 --size 10 -o " + cloud);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* bad : { "--cell 0", "--cell -1", "--cell nan", "--band 0", "--cell 1e9" })
+  {
+    r = RunCommand(Pss() + " mesh " + cloud + " --h 1 " + bad + " -o " + TempPath("never-mesh.vtp"));
+    EXPECT_EQ(r.exitCode, 1) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("must be within"), std::string::npos) << bad << ": " << r.output;
+  }
+  // Allowed, but a band of about 10^9 cells: refused with the count before it is allocated.
+  r = RunCommand(Pss() + " mesh " + cloud + " --h 1 --cell 0.05 --band 100 -o " + TempPath("never-mesh.vtp"));
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("cells (the limit is"), std::string::npos) << r.output;
+  r = RunCommand(Pss() + " mesh " + cloud + " --h 0 -o " + TempPath("never-mesh.vtp"));
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("h must be"), std::string::npos) << r.output;
+}
