@@ -12,6 +12,8 @@
  *   The median distance of the projected points to bun_zipper.ply is printed where VTK is built.
  * - sphere-N: noisy spheres of 10k, 100k and 1M points (CenterOfMass, plane procedure), to show
  *   how the cost grows with N.
+ * - bunny mesh: the bunny's mesh (SurfaceMesh.h) with pss mesh's defaults, the index included;
+ *   items are triangles, and a line under the row gives each stage's time and the mesh's counts.
  * - field-1024: field sampling of a 1024 x 1024 grid around a 5,000-point noisy curve
  *   (CenterOfMass, every array), through vtkPointSetSurfaceFieldSampler (when VTK is built).
  *
@@ -256,6 +258,32 @@ RowResult FieldRow(int threads)
 }
 #endif
 
+// The mesh of the bunny with pss mesh's defaults (center of mass, automatic h, cell 1 h, band
+// 2 h): index, then every stage of the mesher, timed together; the stages on a line of their own.
+RowResult MeshRow(const std::vector<pss::Vec3>& cloud, int threads)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  const pss::PointIndex index(cloud, 3);
+  pss::SurfaceParameters params;
+  params.h = pss::estimateScale(index);
+  const auto surface = pss::makeSurface(pss::Variant::CenterOfMass, index, params);
+  const double indexSeconds = Seconds(t0);
+  pss::MeshTimings t;
+  const pss::SurfaceMesh mesh = pss::extractSurfaceMesh(*surface, pss::MeshOptions{}, threads, &t);
+  const double seconds = Seconds(t0);
+  RowResult row;
+  row.peakKiB = PeakKiB();
+  row.items = mesh.triangles.size();
+  row.itemsPerSecond = static_cast<double>(row.items) / seconds;
+  row.cloudPoints = cloud.size();
+  std::printf("  (%.2f s: index %.2f, band %.2f, corners %.2f, orient %.2f, contour %.2f, projection %.2f, finish %.2f;"
+              " %zu band cells, %zu crossings, %zu pieces, %zu boundary edges)\n",
+    seconds, indexSeconds, t.band, t.corners, t.orient, t.contour, t.projection, t.finish, mesh.statistics.bandCells,
+    mesh.statistics.crossings, mesh.statistics.components, mesh.statistics.boundaryEdges);
+  std::fflush(stdout);
+  return row;
+}
+
 // Runs @p body in a child process; returns false when the child failed.
 bool RunRow(const char* name, const std::function<RowResult()>& body)
 {
@@ -330,6 +358,7 @@ int main(int argc, char** argv)
   auto wanted = [&](const std::string& name) { return only.empty() || name.find(only) != std::string::npos; };
   std::printf("%-34s %9s %11s %6s %7s %9s %7s %9s\n", "row", "items", "items/s", "iters", "neighb", "peak MiB",
     "B/point", "median um");
+  std::fflush(stdout); // or the header is printed again by every row's child process
 
   const std::string bunnyPath = data + "/stanford-bunny/bunny_scans_merged.ply";
   const std::vector<pss::Vec3> bunny = ReadBunny(bunnyPath);
@@ -392,6 +421,15 @@ int main(int argc, char** argv)
         const auto cloud = pss::generateCloud(spec);
         return ProjectRow(cloud, 3, 2.0 * spacing, pss::Variant::CenterOfMass, pss::Procedure::Plane, threads, n, nullptr);
       });
+    }
+  }
+
+  for (int threads : { 1, 2 })
+  {
+    const std::string name = "bunny mesh com t" + std::to_string(threads);
+    if (!bunny.empty() && !quick && wanted(name))
+    {
+      RunRow(name.c_str(), [&]() { return MeshRow(bunny, threads); });
     }
   }
 

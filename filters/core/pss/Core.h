@@ -12,6 +12,7 @@
 #include "pss/PointIndex.h"
 #include "pss/Quadrature.h"
 #include "pss/SurfaceDefinition.h"
+#include "pss/SurfaceMesh.h"
 #include "pss/SyntheticClouds.h"
 #include "pss/Types.h"
 #include "pss/Variants.h"

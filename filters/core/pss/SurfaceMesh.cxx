@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iterator>
 #include <numeric>
@@ -730,24 +731,39 @@ SurfaceMesh SurfaceMesher::finish()
   return mesh;
 }
 
-SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options, int threads)
+SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options, int threads, MeshTimings* timings)
 {
+  MeshTimings local;
+  MeshTimings& t = timings ? *timings : local;
+  auto clock = std::chrono::steady_clock::now();
+  auto lap = [&clock](double& seconds) {
+    const auto now = std::chrono::steady_clock::now();
+    seconds = std::chrono::duration<double>(now - clock).count();
+    clock = now;
+  };
   SurfaceMesher mesher(surface, options);
+  lap(t.band);
   parallelFor(mesher.gridVertexCount(), threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
       mesher.evaluateVertex(i);
     }
   });
+  lap(t.corners);
   mesher.orient();
+  lap(t.orient);
   mesher.contour();
+  lap(t.contour);
   parallelFor(mesher.crossingCount(), threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
       mesher.classifyCrossing(i);
     }
   });
-  return mesher.finish();
+  lap(t.projection);
+  SurfaceMesh mesh = mesher.finish();
+  lap(t.finish);
+  return mesh;
 }
 
 } // namespace pss

@@ -175,7 +175,15 @@ private:
  */
 void countTopology(SurfaceMesh& mesh);
 
-/// All stages on @p threads threads (0 = all cores): the core's one-call entry point.
-SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options, int threads = 0);
+/// Wall time of each stage of one extractSurfaceMesh() call, in seconds.
+struct MeshTimings
+{
+  double band = 0.0, corners = 0.0, orient = 0.0, contour = 0.0, projection = 0.0, finish = 0.0;
+};
+
+/// All stages on @p threads threads (0 = all cores): the core's one-call entry point. Fills
+/// @p timings when given.
+SurfaceMesh extractSurfaceMesh(
+  const SurfaceDefinition& surface, const MeshOptions& options, int threads = 0, MeshTimings* timings = nullptr);
 
 } // namespace pss
