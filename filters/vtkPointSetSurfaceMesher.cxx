@@ -94,25 +94,32 @@ void WriteMesh(const pss::SurfaceMesh& mesh, vtkPolyData* output)
     iterations->SetValue(i, ev.projection.iterations);
     reason->SetValue(i, static_cast<int>(ev.projection.reason));
   }
-  vtkNew<vtkCellArray> cells;
-  if (mesh.dimension == 3)
+  // The connectivity written straight into VTK's arrays (offsets and point ids).
+  const bool surface = mesh.dimension == 3;
+  const vtkIdType cellCount = static_cast<vtkIdType>(surface ? mesh.triangles.size() : mesh.segments.size());
+  const int corners = surface ? 3 : 2;
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfValues(cellCount + 1);
+  connectivity->SetNumberOfValues(cellCount * corners);
+  for (vtkIdType c = 0; c < cellCount; ++c)
   {
-    cells->AllocateExact(static_cast<vtkIdType>(mesh.triangles.size()), 3 * static_cast<vtkIdType>(mesh.triangles.size()));
-    for (const auto& t : mesh.triangles)
+    offsets->SetValue(c, c * corners);
+    for (int k = 0; k < corners; ++k)
     {
-      const vtkIdType ids[3] = { t[0], t[1], t[2] };
-      cells->InsertNextCell(3, ids);
+      const std::uint32_t id = surface ? mesh.triangles[c][k] : mesh.segments[c][k];
+      connectivity->SetValue(c * corners + k, static_cast<vtkIdType>(id));
     }
+  }
+  offsets->SetValue(cellCount, cellCount * corners);
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  if (surface)
+  {
     output->SetPolys(cells);
   }
   else
   {
-    cells->AllocateExact(static_cast<vtkIdType>(mesh.segments.size()), 2 * static_cast<vtkIdType>(mesh.segments.size()));
-    for (const auto& s : mesh.segments)
-    {
-      const vtkIdType ids[2] = { s[0], s[1] };
-      cells->InsertNextCell(2, ids);
-    }
     output->SetLines(cells);
   }
   output->SetPoints(points);

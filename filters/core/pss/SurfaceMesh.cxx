@@ -588,32 +588,37 @@ void countTopology(SurfaceMesh& mesh)
   st.components = st.boundaryEdges = st.nonManifoldEdges = 0;
   st.measure = st.largestComponentMeasure = 0.0;
   const std::size_t nv = mesh.points.size();
+  const bool surface = mesh.dimension == 3;
+  const std::size_t cells = surface ? mesh.triangles.size() : mesh.segments.size();
   UnionFind pieces(nv);
-  std::vector<double> cellMeasure;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-  if (mesh.dimension == 3)
+  std::vector<double> cellMeasure(cells);
+  // An edge (a, b), a <= b, as one 64-bit key: sorting them counts how many cells share each.
+  // In 2D the "edges" counted for the border are the polylines' vertices (a == b).
+  std::vector<std::uint64_t> edges;
+  edges.reserve(surface ? 3 * cells : 2 * cells);
+  auto edgeKey = [](std::uint32_t a, std::uint32_t b) {
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+  };
+  for (std::size_t c = 0; c < cells; ++c)
   {
-    for (const auto& t : mesh.triangles)
+    if (surface)
     {
+      const auto& t = mesh.triangles[c];
       pieces.unite(t[0], t[1]);
       pieces.unite(t[0], t[2]);
       for (int k = 0; k < 3; ++k)
       {
-        edges.emplace_back(std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3]));
+        edges.push_back(edgeKey(t[k], t[(k + 1) % 3]));
       }
-      cellMeasure.push_back(
-        0.5 * (mesh.points[t[1]] - mesh.points[t[0]]).cross(mesh.points[t[2]] - mesh.points[t[0]]).norm());
+      cellMeasure[c] = 0.5 * (mesh.points[t[1]] - mesh.points[t[0]]).cross(mesh.points[t[2]] - mesh.points[t[0]]).norm();
     }
-  }
-  else
-  {
-    for (const auto& s : mesh.segments)
+    else
     {
+      const auto& s = mesh.segments[c];
       pieces.unite(s[0], s[1]);
-      // In 2D the "edges" counted for the border are the polylines' vertices.
-      edges.emplace_back(s[0], s[0]);
-      edges.emplace_back(s[1], s[1]);
-      cellMeasure.push_back((mesh.points[s[1]] - mesh.points[s[0]]).norm());
+      edges.push_back(edgeKey(s[0], s[0]));
+      edges.push_back(edgeKey(s[1], s[1]));
+      cellMeasure[c] = (mesh.points[s[1]] - mesh.points[s[0]]).norm();
     }
   }
   std::sort(edges.begin(), edges.end());
@@ -630,21 +635,20 @@ void countTopology(SurfaceMesh& mesh)
     st.nonManifoldEdges += (j - i > 2) ? 1 : 0;
     i = j;
   }
-  const std::size_t cells = mesh.dimension == 3 ? mesh.triangles.size() : mesh.segments.size();
-  st.eulerCharacteristic = mesh.dimension == 3
+  st.eulerCharacteristic = surface
     ? static_cast<long long>(nv) - static_cast<long long>(distinct) + static_cast<long long>(cells)
     : static_cast<long long>(nv) - static_cast<long long>(cells);
-  std::unordered_map<std::size_t, double> measureOf;
+  std::vector<double> measureOf(nv, -1.0); // per piece, at its root; -1 where no piece is rooted
   for (std::size_t c = 0; c < cells; ++c)
   {
-    const std::uint32_t v = mesh.dimension == 3 ? mesh.triangles[c][0] : mesh.segments[c][0];
-    measureOf[pieces.find(v)] += cellMeasure[c];
+    double& m = measureOf[pieces.find(surface ? mesh.triangles[c][0] : mesh.segments[c][0])];
+    st.components += m < 0.0 ? 1 : 0;
+    m = std::max(m, 0.0) + cellMeasure[c];
     st.measure += cellMeasure[c];
   }
-  st.components = measureOf.size();
-  for (const auto& entry : measureOf)
+  for (double m : measureOf)
   {
-    st.largestComponentMeasure = std::max(st.largestComponentMeasure, entry.second);
+    st.largestComponentMeasure = std::max(st.largestComponentMeasure, m);
   }
 }
 
