@@ -77,14 +77,25 @@ void PrintSurface(ostream& os, vtkIndent indent, vtkPointSetSurface* surface)
   }
 }
 
-void WarnAboutSkippedPoints(vtkAlgorithm* algorithm, vtkPointSetSurface* surface)
+bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPointSet* cloud, const char* what)
 {
+  if (!surface)
+  {
+    vtkErrorWithObjectMacro(algorithm, << "no vtkPointSetSurface is set");
+    return false;
+  }
+  if (!surface->Prepare(cloud))
+  {
+    vtkErrorWithObjectMacro(algorithm, << "cannot define the surface" << what << ": " << surface->GetLastError());
+    return false;
+  }
   const vtkIdType skipped = surface->GetNumberOfSkippedPoints();
   if (skipped > 0)
   {
     vtkWarningWithObjectMacro(algorithm, << skipped
                                          << " cloud point(s) with NaN or infinite coordinates were left out of the surface");
   }
+  return true;
 }
 
 }

@@ -20,6 +20,7 @@
 class vtkAlgorithm;
 class vtkDataObject;
 class vtkObject;
+class vtkPointSet;
 class vtkPointSetSurface;
 
 namespace pss_vtk
@@ -53,8 +54,12 @@ vtkMTimeType LatestMTime(vtkMTimeType own, vtkObject* part);
 /// The "Surface:" block of the filters' PrintSelf.
 void PrintSurface(ostream& os, vtkIndent indent, vtkPointSetSurface* surface);
 
-/// A warning on @p algorithm when the prepared cloud had points with NaN/Inf coordinates.
-void WarnAboutSkippedPoints(vtkAlgorithm* algorithm, vtkPointSetSurface* surface);
+/**
+ * What every filter does first: prepares @p surface on @p cloud, reporting a missing surface or a
+ * failed Prepare() as an error of @p algorithm ("cannot define the surface<what>: ...") and
+ * returning false, and warning when cloud points with NaN/Inf coordinates were left out.
+ */
+bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPointSet* cloud, const char* what = "");
 
 }
 

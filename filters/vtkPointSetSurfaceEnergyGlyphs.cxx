@@ -141,17 +141,10 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   vtkPolyData* glyphs = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* fits = vtkPolyData::GetData(outputVector, 1);
   this->GlyphScale = 0.0;
-  if (!this->Surface)
+  if (!pss_vtk::PrepareSurface(this, this->Surface, cloud))
   {
-    vtkErrorMacro(<< "no vtkPointSetSurface is set");
     return 0;
   }
-  if (!this->Surface->Prepare(cloud))
-  {
-    vtkErrorMacro(<< "cannot define the surface: " << this->Surface->GetLastError());
-    return 0;
-  }
-  pss_vtk::WarnAboutSkippedPoints(this, this->Surface);
   if (!samples || samples->GetNumberOfPoints() == 0)
   {
     return 1; // nothing to plot: empty outputs

@@ -291,22 +291,15 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
     vtkErrorMacro(<< "no output data object");
     return 0;
   }
-  if (!this->Surface)
-  {
-    vtkErrorMacro(<< "no vtkPointSetSurface is set");
-    return 0;
-  }
   if (!this->GenerateSamplingGrid && !input)
   {
     vtkErrorMacro(<< "no dataset to sample: connect input 0 or turn GenerateSamplingGrid on");
     return 0;
   }
-  if (!this->Surface->Prepare(cloud))
+  if (!pss_vtk::PrepareSurface(this, this->Surface, cloud, " from the source"))
   {
-    vtkErrorMacro(<< "cannot define the surface from the source: " << this->Surface->GetLastError());
     return 0;
   }
-  pss_vtk::WarnAboutSkippedPoints(this, this->Surface);
 
   const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
   pss::Orientation orientation;

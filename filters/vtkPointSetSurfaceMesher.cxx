@@ -164,17 +164,10 @@ int vtkPointSetSurfaceMesher::RequestData(
 {
   vtkPointSet* cloud = vtkPointSet::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  if (!this->Surface)
+  if (!pss_vtk::PrepareSurface(this, this->Surface, cloud))
   {
-    vtkErrorMacro(<< "no vtkPointSetSurface is set");
     return 0;
   }
-  if (!this->Surface->Prepare(cloud))
-  {
-    vtkErrorMacro(<< "cannot define the surface: " << this->Surface->GetLastError());
-    return 0;
-  }
-  pss_vtk::WarnAboutSkippedPoints(this, this->Surface);
   pss::MeshOptions options;
   options.cellSize = this->CellSize;
   options.band = this->Band;

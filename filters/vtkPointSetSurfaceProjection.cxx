@@ -93,17 +93,10 @@ int vtkPointSetSurfaceProjection::RequestData(
     inputVector[1]->GetNumberOfInformationObjects() > 0 ? vtkPointSet::GetData(inputVector[1], 0) : cloud;
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* lines = vtkPolyData::GetData(outputVector, 1);
-  if (!this->Surface)
+  if (!pss_vtk::PrepareSurface(this, this->Surface, cloud))
   {
-    vtkErrorMacro(<< "no vtkPointSetSurface is set");
     return 0;
   }
-  if (!this->Surface->Prepare(cloud))
-  {
-    vtkErrorMacro(<< "cannot define the surface: " << this->Surface->GetLastError());
-    return 0;
-  }
-  pss_vtk::WarnAboutSkippedPoints(this, this->Surface);
   if (!starts || starts->GetNumberOfPoints() == 0)
   {
     return 1; // nothing to project: empty outputs
