@@ -557,8 +557,10 @@ int Mesh(const std::vector<std::string>& args)
     [&](const std::string& v) { mesher->SetMaxNormalAngle(pss_cli::ToDouble("max-normal-angle", v)); });
   t.Value("max-vertex-travel", "CELLS", "drop crossings whose projection moves farther (default 2)",
     [&](const std::string& v) { mesher->SetMaxVertexTravel(pss_cli::ToDouble("max-vertex-travel", v)); });
-  t.Value("max-seam-angle", "DEG", "skip cells across which the oriented n turns more (default 60)",
+  t.Value("max-seam-angle", "DEG", "skip cells across which the oriented n turns more (default 80)",
     [&](const std::string& v) { mesher->SetMaxSeamAngle(pss_cli::ToDouble("max-seam-angle", v)); });
+  t.Value("max-fold-angle", "DEG", "drop triangles whose normal is farther off their vertices' n (default 60)",
+    [&](const std::string& v) { mesher->SetMaxFoldAngle(pss_cli::ToDouble("max-fold-angle", v)); });
   std::vector<std::string> positional;
   if (!ParseCommand("mesh", "CLOUD -o FILE [options]",
         "Meshes the point-set surface of CLOUD where it is defined: triangles in 3D (polylines in 2D) with\n"

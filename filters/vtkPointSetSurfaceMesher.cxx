@@ -174,6 +174,7 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.projectVertices = this->ProjectVertices;
   options.maxVertexTravel = this->MaxVertexTravel;
   options.maxSeamAngle = this->MaxSeamAngle;
+  options.maxFoldAngle = this->MaxFoldAngle;
   options.maxBandCells = static_cast<std::size_t>(this->MaximumNumberOfBandCells);
   options.projection.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.domain.maxDistance = this->MaxDistance;
@@ -240,6 +241,7 @@ void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxNormalAngle: " << this->MaxNormalAngle << "\n";
   os << indent << "MaxVertexTravel: " << this->MaxVertexTravel << "\n";
   os << indent << "MaxSeamAngle: " << this->MaxSeamAngle << "\n";
+  os << indent << "MaxFoldAngle: " << this->MaxFoldAngle << "\n";
   os << indent << "MaximumNumberOfBandCells: " << this->MaximumNumberOfBandCells << "\n";
   pss_vtk::PrintSurface(os, indent, this->Surface);
 }

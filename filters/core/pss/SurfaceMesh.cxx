@@ -33,9 +33,9 @@ void MeshOptions::validate() const
   {
     throw std::invalid_argument("the mesh's largest vertex travel must be a positive finite number of cells");
   }
-  if (!(maxSeamAngle >= 0.0 && maxSeamAngle <= 180.0))
+  if (!(maxSeamAngle >= 0.0 && maxSeamAngle <= 180.0) || !(maxFoldAngle >= 0.0 && maxFoldAngle <= 180.0))
   {
-    throw std::invalid_argument("the mesh's seam angle must be in [0, 180] degrees");
+    throw std::invalid_argument("the mesh's seam and fold angles must be in [0, 180] degrees");
   }
   if (maxBandCells == 0)
   {
@@ -678,10 +678,10 @@ SurfaceMesh SurfaceMesher::finish()
     point[i] = Options.projectVertices ? Evidence[i].projection.point : Crossings[i].point;
     normal[i] = d.defined ? (d.n.dot(Crossings[i].reference) < 0.0 ? Vec3(-d.n) : d.n) : Vec3::Zero();
   }
-  // A cell whose own normal (from its final vertices) is more than maxSeamAngle off its vertices'
+  // A cell whose own normal (from its final vertices) is more than maxFoldAngle off its vertices'
   // normals is folded over, or bridges two sheets whose crossings projected apart: dropped.
   // Degenerate cells (a tiny area or length) have no normal to judge and are kept.
-  const double foldCos = std::cos(Options.maxSeamAngle * M_PI / 180.0);
+  const double foldCos = std::cos(Options.maxFoldAngle * M_PI / 180.0);
   const double tiny = 1e-6 * Cell;
   auto unfolded = [&](const Vec3& face, const Vec3& vertexNormals) {
     return face.norm() <= tiny * (Dimension == 3 ? tiny : 1.0) ||

@@ -26,7 +26,7 @@
  *    InDomain.
  * 6. finish: a simplex is kept only when all its vertices are InDomain and their projections
  *    travelled at most maxVertexTravel cells, and when its own normal, once its vertices have
- *    moved to their projections (projectVertices), is within maxSeamAngle of its vertices' n (a
+ *    moved to their projections (projectVertices), is within maxFoldAngle of its vertices' n (a
  *    cell whose crossings projected onto two different sheets, or folded over, is not). The
  *    unused vertices are dropped and the mesh's topology is counted.
  * Every stage is deterministic: the result does not depend on the number of threads.
@@ -51,8 +51,8 @@ struct MeshOptions
   double band = 2.0;            ///< how far from the cloud cells are visited, in units of h (> 0)
   bool projectVertices = true;  ///< move the vertices onto the surface (else keep the grid crossings)
   double maxVertexTravel = 2.0; ///< in cells: a crossing whose projection moves farther is dropped
-  double maxSeamAngle = 60.0;   ///< degrees: simplices across which oriented n turns more are skipped, and
-                                ///< cells whose normal is this far off their vertices' n are dropped
+  double maxSeamAngle = 80.0;   ///< degrees: simplices across which oriented n turns more are skipped
+  double maxFoldAngle = 60.0;   ///< degrees: cells whose own normal is farther off their vertices' n are dropped
   std::size_t maxBandCells = std::size_t(1) << 24; ///< refuse larger bands (about 60 bytes a cell)
   /// How crossings are projected (Definition 1 by default). The tolerance is 1e-5 h, not the
   /// projection's 1e-6 h: vertices need no better, and the integral energy's steps can hover
@@ -77,7 +77,7 @@ struct MeshStatistics
   std::size_t droppedVertices = 0;    ///< crossings not InDomain, travelled too far, or of the other extremum
   std::size_t maximumCrossings = 0;   ///< of which: g falls along n there (a maximum of e; a minimum with seekMaxima)
   std::size_t droppedSimplices = 0;   ///< triangles (segments) dropped, with those vertices or folded
-  std::size_t foldedSimplices = 0;    ///< of which: cells turned more than maxSeamAngle off their vertices' n
+  std::size_t foldedSimplices = 0;    ///< of which: cells turned more than maxFoldAngle off their vertices' n
   std::size_t components = 0;         ///< connected pieces of the result
   std::size_t boundaryEdges = 0;      ///< edges of one triangle (3D); polyline ends (2D)
   std::size_t nonManifoldEdges = 0;   ///< edges of three or more triangles (3D); vertices of 3+ segments (2D)
