@@ -10,7 +10,8 @@ Reads the cloud (a .ply, .vtp, .vtu, .csv or .xyz point file; by default the 362
 scans of ../shared/data/stanford-bunny, next to this source tree), keeps every K-th point with
 --subsample K, and runs Point Set Surface Mesh on it: the extremal surface extracted from a sparse
 band of grid cells around the points, only where it is defined. Two views of one layout share one
-camera: on the left the cloud (dark red points), on the right the mesh coloured by Stability (how
+camera: on the left the cloud (red points, darker farther from the camera: a dense cloud would
+otherwise be a flat silhouette), on the right the mesh coloured by Stability (how
 sharply the energy picks n: low where the surface bends fast compared with h or where the scans
 are thin), with a colour bar. Each view's title gives the counts: points and h on the left;
 triangles, pieces and boundary edges (holes of the scans, or the mesh stopping where the surface
@@ -30,6 +31,7 @@ Options:
   --cloud FILE    the cloud (default ../shared/data/stanford-bunny/bunny_scans_merged.ply,
                   relative to this source tree's root)
   --synthetic     use the synthetic sphere even when the cloud file exists
+  --plain-cloud   draw every cloud point dark red (no depth shading)
   --subsample K   keep every K-th point of the cloud (default 1: all of them)
   --variant NAME  levin | normalized | com | integral | delta (default com: the centre of mass,
                   fast and with a wide domain on smooth scans)
@@ -53,6 +55,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 TREE = os.path.normpath(os.path.join(HERE, "..", ".."))
 DEFAULT_CLOUD = os.path.join("..", "shared", "data", "stanford-bunny", "bunny_scans_merged.ply")
 CLOUD_COLOUR = [0.6, 0.1, 0.1]
+# The cloud's depth shading, near to far: light red to the plain cloud's dark red to near black
+# (no colour of Viridis, the mesh's map, is within reach of these).
+DEPTH_COLOURS = [0.0, 1.0, 0.55, 0.5, 0.5, 0.6, 0.1, 0.1, 1.0, 0.25, 0.03, 0.03]
 
 
 def parse_size(text):
@@ -127,6 +132,7 @@ def main():
     parser.add_argument("--size", type=parse_size, default=[1600, 800])
     parser.add_argument("--cloud", default=os.path.join(TREE, DEFAULT_CLOUD))
     parser.add_argument("--synthetic", action="store_true")
+    parser.add_argument("--plain-cloud", action="store_true")
     parser.add_argument("--subsample", type=positive_int, default=1)
     parser.add_argument("--variant", choices=sorted(VARIANTS), default="com")
     parser.add_argument("--h", type=positive_float)
@@ -193,6 +199,12 @@ def main():
     radius = 0.5 * ((x1 - x0) ** 2 + (y1 - y0) ** 2 + (z1 - z0) ** 2) ** 0.5
     direction = [0.13, 0.09, 0.99]
 
+    # The points' distance along the view direction, for the depth shading of the cloud.
+    depth = pvs.Calculator(Input=cloud, ResultArrayName="Depth",
+                           Function="-(coordsX*%.17g + coordsY*%.17g + coordsZ*%.17g)" % tuple(direction))
+    depth.UpdatePipeline()
+    near, far = depth.PointData["Depth"].GetRange()
+    far = near + 0.4 * (far - near)  # the visible points are the near ones: spend the colours there
     every = " (every %d-th)" % args.subsample if args.subsample > 1 else ""
     titles = [
         "%s: %s points%s\nh = %.3g (%s)" % (name, "{:,}".format(npoints), every, h, "given" if args.h else "automatic"),
@@ -209,10 +221,19 @@ def main():
             pass
         view.OrientationAxesVisibility = 0
         if cell == 1:
-            d = pvs.Show(cloud, view)
+            d = pvs.Show(depth, view)
             d.SetRepresentationType("Points")
-            d.ColorArrayName = ["POINTS", ""]
             d.AmbientColor = d.DiffuseColor = CLOUD_COLOUR
+            if args.plain_cloud:
+                d.ColorArrayName = ["POINTS", ""]
+            else:
+                pvs.ColorBy(d, ("POINTS", "Depth"))
+                depth_lut = pvs.GetColorTransferFunction("Depth")
+                depth_lut.AutomaticRescaleRangeMode = "Never"
+                depth_lut.RGBPoints = [near + t * (far - near) if i % 4 == 0 else t
+                                       for i, t in enumerate(DEPTH_COLOURS)]
+                d.LookupTable = depth_lut
+                d.SetScalarBarVisibility(view, False)
             d.PointSize = 1.0 if npoints > 10000 else 2.0
         else:
             d = pvs.Show(mesh, view)
