@@ -265,7 +265,7 @@ def main():
 
     layout.SetSize(*args.size)
     pvs.SaveScreenshot(args.output, layout, ImageResolution=args.size, TransparentBackground=0, CompressionLevel="9")
-    print("%s: %s, %d points, %s, h = %.4g: %d vertices, %d triangles, %d pieces, %d boundary edges, "
+    print("%s: %s, %d points, %s, h = %.4g: %d vertices, %d triangles, %d piece(s), %d boundary edges, "
           "%d non-manifold edges, Stability %.3g..%.3g; mesher %.1f s"
           % (args.output, name, npoints, VARIANTS[args.variant], h, data.GetNumberOfPoints(), triangles, pieces,
              boundary, int(field_value(data, "NonManifoldEdges")), stability[0], stability[1], seconds))
