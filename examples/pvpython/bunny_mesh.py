@@ -164,7 +164,7 @@ def main():
     if npoints == 0:
         sys.exit("error: no points in %s" % args.cloud)
 
-    surface = dict(Variant=VARIANTS[args.variant], Dimension="3D")
+    surface = dict(Variant=VARIANTS[args.variant])
     if args.h:
         surface.update(AutomaticScale=0, ScaleFactor=args.h)
     knobs = {}
@@ -197,7 +197,7 @@ def main():
     # that the colour bar has room.
     cx, cy, cz = (x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2
     radius = 0.5 * ((x1 - x0) ** 2 + (y1 - y0) ** 2 + (z1 - z0) ** 2) ** 0.5
-    direction = [0.13, 0.09, 0.99]
+    direction = [0.13, 0.09, 0.99]  # from the focal point towards the camera
 
     # The points' distance along the view direction, for the depth shading of the cloud.
     depth = pvs.Calculator(Input=cloud, ResultArrayName="Depth",
@@ -256,10 +256,9 @@ def main():
         t.Color = [0, 0, 0]
         t.FontSize = 13
         t.WindowLocation = "Upper Center"
-        shift = 0.0 if cell == 1 else 0.08 * radius
-        view.CameraFocalPoint = [cx + shift, cy, cz]
-        view.CameraPosition = [cx + shift + 3.3 * radius * u for u in direction[:1]] + \
-                              [c + 3.3 * radius * u for c, u in zip((cy, cz), direction[1:])]
+        focal = [cx + (0.0 if cell == 1 else 0.08 * radius), cy, cz]
+        view.CameraFocalPoint = focal
+        view.CameraPosition = [f + 3.3 * radius * u for f, u in zip(focal, direction)]
         view.CameraViewUp = [0, 1, 0]
         view.CameraViewAngle = 30
 
