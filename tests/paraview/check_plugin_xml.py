@@ -90,6 +90,10 @@ def value_of(token, chain):
             return header.enums[token]
     if token in SYMBOLS:
         return SYMBOLS[token]
+    # A power of two written as a shift, e.g. vtkIdType(1) << 24 (MaximumNumberOfBandCells).
+    shift = re.fullmatch(r"(?:\w+\(\s*)?(\d+)\s*\)?\s*<<\s*(\d+)", token)
+    if shift:
+        return float(int(shift.group(1)) << int(shift.group(2)))
     return float(token)
 
 

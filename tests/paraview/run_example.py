@@ -2,13 +2,15 @@
 
     pvpython run_example.py --xvfb-run xvfb-run --pvbatch pvbatch --example EXAMPLE.py
         --plugin PointSetSurfaces.so --output out.png --size 800x600
-        [--min-std 20] [--colour NAME:R,G,B:MIN_PIXELS ...] [--timeout 120] [-- EXAMPLE ARGS]
+        [--min-std 20] [--colour NAME:R,G,B:MIN_PIXELS ...] [--timeout 120] [--skip-unless FILE]
+        [-- EXAMPLE ARGS]
 
 Fails unless: pvbatch exits with 0; the PNG exists and is newer than the start of the run; it
 has exactly the requested size; the standard deviation of its luminance is at least --min-std
 (a blank or single-colour image has about 0); and, for each --colour, at least MIN_PIXELS pixels
 lie within 60 (Euclidean RGB distance) of R,G,B, i.e. the things drawn in that colour were drawn.
-Prints the measured numbers.
+Prints the measured numbers. With --skip-unless FILE, exits with 77 (ctest's SKIP_RETURN_CODE for
+these tests) without running anything when FILE is absent (data that is not always there).
 """
 import argparse
 import os
@@ -38,9 +40,13 @@ parser.add_argument("--size", required=True)
 parser.add_argument("--min-std", type=float, default=20.0)
 parser.add_argument("--colour", type=colour, action="append", default=[])
 parser.add_argument("--timeout", type=int, default=120)
+parser.add_argument("--skip-unless", help="skip (exit status 77) when this file is absent")
 parser.add_argument("extra", nargs="*", help="more arguments for the example (after --)")
 args = parser.parse_args()
 
+if args.skip_unless and not os.path.isfile(args.skip_unless):
+    print("SKIP: %s is absent" % args.skip_unless)
+    sys.exit(77)
 width, height = (int(v) for v in args.size.split("x"))
 if os.path.exists(args.output):
     os.remove(args.output)
