@@ -5,6 +5,8 @@
 #   cli        tests/cli: the pss tool run as a user runs it
 #   paper      tests/paper: the main demo's acceptance bounds
 #   paraview   tests/paraview: pvpython, pvbatch and the GUI with the plugin
+#   install    tests/install: cmake --install, a downstream find_package project, the installed plugin
+#   python     tests/python: the pointsetsurfaces package in python3 and pvpython (examples/python)
 #   bunny      added to a test of any stage above that reads the 362,272-point Stanford bunny; a
 #              GoogleTest case is one when its name contains "StanfordBunny"
 #   sanitizer  the ASan+UBSan and TSan copies (tests/RunSanitized.cmake)
@@ -22,7 +24,7 @@
 include_guard(GLOBAL)
 include(GoogleTest)
 
-set(PSS_TEST_STAGES unit pipeline cli paper paraview bunny sanitizer fuzz)
+set(PSS_TEST_STAGES unit pipeline cli paper paraview install python bunny sanitizer fuzz)
 # The regular expression (on "Suite.Name") and the gtest filter that pick the bunny's cases.
 set(PSS_BUNNY_GTEST_REGEX "StanfordBunny")
 set(PSS_BUNNY_GTEST_FILTER "*StanfordBunny*")

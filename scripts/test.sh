@@ -3,7 +3,7 @@
 # the test stages under ctest. Stages are ctest labels (cmake/PssTesting.cmake):
 #
 #   scripts/test.sh           every stage, one after another (what .ci/run runs):
-#                               1. plain:     unit pipeline cli paper paraview bunny (tests side by side)
+#                               1. plain:     unit pipeline cli paper paraview install python bunny
 #                               2. sanitizer: builds the ASan+UBSan copy, alone, runs its suites; the same with TSan
 #                               3. fuzz:      builds the libFuzzer targets with clang, alone, runs each fuzzer
 #   scripts/test.sh --quick   the developer loop: all but the sanitizer, fuzz and bunny stages
