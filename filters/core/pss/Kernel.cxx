@@ -16,10 +16,6 @@
 #include <immintrin.h>
 #endif
 
-#if !defined(__GNUC__)
-#error "the kernel's vector loops use GCC/Clang vector extensions"
-#endif
-
 namespace pss
 {
 
