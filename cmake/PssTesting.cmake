@@ -7,10 +7,12 @@
 #   paraview   tests/paraview: pvpython, pvbatch and the GUI with the plugin
 #   install    tests/install: cmake --install, a downstream find_package project, the installed plugin
 #   python     tests/python: the pointsetsurfaces package in python3 and pvpython (examples/python)
+#   portable   tests/portable: no AVX outside the dispatched kernels; the suites on the baseline kernels
 #   bunny      added to a test of any stage above that reads the 362,272-point Stanford bunny; a
 #              GoogleTest case is one when its name contains "StanfordBunny"
 #   sanitizer  the ASan+UBSan and TSan copies (tests/RunSanitized.cmake)
 #   fuzz       the libFuzzer targets (tests/fuzz/RunFuzz.cmake)
+#   clang      the unit, pipeline and cli suites built with clang (tests/CMakeLists.txt)
 #
 # How a directory gives its tests their label, so that a new test needs no extra work:
 #   pss_test_labels(LABEL...)      sets the default for this directory and the ones below it, and
@@ -24,7 +26,7 @@
 include_guard(GLOBAL)
 include(GoogleTest)
 
-set(PSS_TEST_STAGES unit pipeline cli paper paraview install python bunny sanitizer fuzz)
+set(PSS_TEST_STAGES unit pipeline cli paper paraview install python portable bunny sanitizer fuzz clang)
 # The regular expression (on "Suite.Name") and the gtest filter that pick the bunny's cases.
 set(PSS_BUNNY_GTEST_REGEX "StanfordBunny")
 set(PSS_BUNNY_GTEST_FILTER "*StanfordBunny*")

@@ -6,9 +6,10 @@
 #                               1. plain:     unit pipeline cli paper paraview install python bunny
 #                               2. sanitizer: builds the ASan+UBSan copy, alone, runs its suites; the same with TSan
 #                               3. fuzz:      builds the libFuzzer targets with clang, alone, runs each fuzzer
-#   scripts/test.sh --quick   the developer loop: all but the sanitizer, fuzz and bunny stages
+#                               4. clang:     builds the unit, pipeline and cli suites with clang, alone, runs them
+#   scripts/test.sh --quick   the developer loop: all but the sanitizer, fuzz, clang and bunny stages
 #
-# A nested build (sanitized copy, fuzz targets) is a ctest test marked RUN_SERIAL: it runs with
+# A nested build (sanitized copy, fuzz targets, clang copy) is a ctest test marked RUN_SERIAL: it runs with
 # every core while no test runs. Other arguments go to each ctest run (e.g. -R Circle, -L unit).
 # Environment: PSS_BUILD_DIR (default build/), PSS_CMAKE_ARGS (extra configure options, e.g.
 # "-DPSS_TEST_FUZZ=OFF"), CMAKE_BUILD_PARALLEL_LEVEL (build jobs, default every core),
@@ -45,11 +46,12 @@ stage() {
 }
 
 if [ "$quick" -eq 1 ]; then
-  stage quick -LE 'sanitizer|fuzz|bunny'
+  stage quick -LE 'sanitizer|fuzz|clang|bunny'
 else
-  stage plain -LE 'sanitizer|fuzz'
+  stage plain -LE 'sanitizer|fuzz|clang'
   stage sanitizer -L sanitizer
   stage fuzz -L fuzz
+  stage clang -L clang
 fi
 
 printf 'test.sh: %s\n' "${summary[@]}"

@@ -3,8 +3,9 @@
 #   cmake -DMODE=build -DSANITIZER=address|thread -DSOURCE_DIR=... -DBINARY_DIR=... -DTARGETS=a,b [-DLAUNCHER=ccache] -P RunSanitized.cmake
 #   cmake -DMODE=run   -DSANITIZER=address|thread -DBINARY_DIR=... -DTARGETS=a -DFILTER=... -P RunSanitized.cmake
 # address: AddressSanitizer + UndefinedBehaviorSanitizer (the asan preset: PSS_SANITIZE);
-# thread: ThreadSanitizer (the tsan preset: compiler and linker flags of the whole copy).
-# Any report fails the run.
+# thread: ThreadSanitizer (the tsan preset: compiler and linker flags of the whole copy);
+# none with -DPRESET=clang: the plain suites built with clang (the clang stage).
+# Any report or failing test fails the run.
 if(NOT DEFINED MODE)
   set(MODE build)
 endif()
@@ -33,8 +34,14 @@ if(SANITIZER STREQUAL "address")
 elseif(SANITIZER STREQUAL "thread")
   set(preset tsan)
   set(ENV{TSAN_OPTIONS} "halt_on_error=1:second_deadlock_stack=1:suppressions=${CMAKE_CURRENT_LIST_DIR}/tsan-vtk.supp")
+elseif(SANITIZER STREQUAL "none")
+  # A plain copy with another preset's compiler, e.g. -DPRESET=clang (the clang stage).
+  if(NOT DEFINED PRESET)
+    message(FATAL_ERROR "RunSanitized.cmake: SANITIZER=none needs -DPRESET=...")
+  endif()
+  set(preset ${PRESET})
 else()
-  message(FATAL_ERROR "RunSanitized.cmake: SANITIZER must be address or thread, not '${SANITIZER}'")
+  message(FATAL_ERROR "RunSanitized.cmake: SANITIZER must be address, thread or none, not '${SANITIZER}'")
 endif()
 
 if(MODE STREQUAL "build")
