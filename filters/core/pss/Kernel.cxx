@@ -87,10 +87,14 @@ namespace
 // extensions: one AVX register on the AVX2 path, two SSE2 registers on the baseline). Each keeps
 // one partial sum per lane and adds the lanes in a fixed order at the end, so a result depends
 // only on the neighbours and their order, never on the thread, the call history or the CPU.
-// GCC notes that returning a 32-byte vector without AVX changes the ABI: these helpers are
-// internal and always inlined, so no such value ever crosses a call. (For the rest of this file:
-// GCC reports the note at its end.)
-#if defined(__GNUC__) && !defined(__clang__)
+// GCC and clang note that returning a 32-byte vector without AVX changes the ABI: these helpers
+// are internal and always inlined, so no such value ever crosses a call. (For the rest of this
+// file: GCC reports the note at its end.)
+#if defined(__clang__)
+#if __has_warning("-Wpsabi")
+#pragma clang diagnostic ignored "-Wpsabi"
+#endif
+#elif defined(__GNUC__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
 typedef double VecD __attribute__((vector_size(8 * SimdLanes)));
