@@ -1,6 +1,6 @@
 # Builds the libFuzzer targets of tests/fuzz with clang, or runs one of them for a bounded time on
 # its committed seed corpus. Invoked by ctest (tests/CMakeLists.txt):
-#   cmake -DMODE=build -DSOURCE_DIR=tests/fuzz -DBINARY_DIR=build/fuzz -P RunFuzz.cmake
+#   cmake -DMODE=build -DSOURCE_DIR=. -DBINARY_DIR=build/fuzz [-DLAUNCHER=ccache] -P RunFuzz.cmake
 #   cmake -DMODE=run -DBINARY_DIR=build/fuzz -DFUZZER=pss_fuzz_core -DCORPUS=tests/fuzz/corpus/core
 #         -DSECONDS=60 [-DMAX_LEN=1024] -P RunFuzz.cmake
 # A crash, a sanitizer report, a broken contract (abort), a leak or a slow input (-timeout) makes
@@ -15,18 +15,28 @@ endforeach()
 
 if(MODE STREQUAL "build")
   if(NOT DEFINED SOURCE_DIR)
-    message(FATAL_ERROR "RunFuzz.cmake -DMODE=build needs -DSOURCE_DIR=...")
+    message(FATAL_ERROR "RunFuzz.cmake -DMODE=build needs -DSOURCE_DIR=... (the project's root)")
   endif()
   find_program(clangxx NAMES clang++ clang++-14 REQUIRED)
   find_program(clangc NAMES clang clang-14 REQUIRED)
+  set(launcher "")
+  if(LAUNCHER)
+    set(launcher "-DCMAKE_C_COMPILER_LAUNCHER=${LAUNCHER}" "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
+  endif()
+  # The fuzz preset of CMakePresets.json (PSS_FUZZ: only tests/fuzz), with the clang found here.
   execute_process(
-    COMMAND "${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${BINARY_DIR}" -DCMAKE_BUILD_TYPE=RelWithDebInfo
-      "-DCMAKE_C_COMPILER=${clangc}" "-DCMAKE_CXX_COMPILER=${clangxx}"
+    COMMAND "${CMAKE_COMMAND}" -S "${SOURCE_DIR}" --preset fuzz -B "${BINARY_DIR}"
+      "-DCMAKE_C_COMPILER=${clangc}" "-DCMAKE_CXX_COMPILER=${clangxx}" ${launcher}
     RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "configuring the fuzz targets failed")
   endif()
-  cmake_host_system_information(RESULT cores QUERY NUMBER_OF_LOGICAL_CORES)
+  # ctest runs this step alone (RUN_SERIAL): every core, or CMAKE_BUILD_PARALLEL_LEVEL.
+  if(DEFINED ENV{CMAKE_BUILD_PARALLEL_LEVEL} AND NOT "$ENV{CMAKE_BUILD_PARALLEL_LEVEL}" STREQUAL "")
+    set(cores "$ENV{CMAKE_BUILD_PARALLEL_LEVEL}")
+  else()
+    cmake_host_system_information(RESULT cores QUERY NUMBER_OF_LOGICAL_CORES)
+  endif()
   execute_process(COMMAND "${CMAKE_COMMAND}" --build "${BINARY_DIR}" --parallel ${cores} RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "building the fuzz targets failed")

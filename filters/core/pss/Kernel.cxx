@@ -7,29 +7,37 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
-#if defined(__AVX2__)
+// Run-time dispatch of the vector kernels below (x86-64 with GCC or clang): each is compiled
+// twice, for the x86-64 baseline (SSE2) and for AVX2, and the first call picks the AVX2 copy when
+// the CPU has it, unless the environment variable PSS_SIMD=baseline forces the baseline copy.
+// Both copies compute with vectors of four doubles (two SSE2 registers on the baseline) and no
+// fused multiply-add, so they give bitwise the same results; only the speed differs. A build
+// for the compiling machine (PSS_NATIVE_ARCH, -march=native) compiles both for that machine.
+#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+#define PSS_KERNEL_DISPATCH 1
 #include <immintrin.h>
+#define PSS_TARGET_AVX2 __attribute__((target("avx2")))
+#else
+#define PSS_KERNEL_DISPATCH 0
 #endif
-
-#if !defined(__GNUC__)
-#error "the kernel's vector loops use GCC/Clang vector extensions"
-#endif
+// The bodies the dispatched functions share: always inlined, so that each copy compiles them for
+// its own instruction set (a call to an out-of-line copy would run baseline code).
+#define PSS_KERNEL_INLINE inline __attribute__((always_inline))
 
 namespace pss
 {
 
 namespace
 {
-#if defined(__AVX__)
+// Doubles per vector on every path: the partial sums, and so every result, do not depend on the
+// instruction set chosen.
 constexpr int SimdLanes = 4;
-#else
-constexpr int SimdLanes = 2;
-#endif
 } // namespace
 
 void SurfaceParameters::validate() const
@@ -76,30 +84,40 @@ namespace
 {
 
 // The weighted sums below run over whole vectors of SimdLanes doubles (GCC/Clang vector
-// extensions: AVX where the build has it, SSE2 otherwise). Each keeps one partial sum per lane
-// and adds the lanes in a fixed order at the end, so a result depends only on the neighbours
-// and their order, never on the thread or the call history.
+// extensions: one AVX register on the AVX2 path, two SSE2 registers on the baseline). Each keeps
+// one partial sum per lane and adds the lanes in a fixed order at the end, so a result depends
+// only on the neighbours and their order, never on the thread, the call history or the CPU.
+// GCC and clang note that returning a 32-byte vector without AVX changes the ABI: these helpers
+// are internal and always inlined, so no such value ever crosses a call. (For the rest of this
+// file: GCC reports the note at its end.)
+#if defined(__clang__)
+#if __has_warning("-Wpsabi")
+#pragma clang diagnostic ignored "-Wpsabi"
+#endif
+#elif defined(__GNUC__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 typedef double VecD __attribute__((vector_size(8 * SimdLanes)));
 typedef std::uint64_t VecU __attribute__((vector_size(8 * SimdLanes)));
 
-VecD load(const double* p)
+PSS_KERNEL_INLINE VecD load(const double* p)
 {
   VecD v;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
 
-void store(double* p, const VecD& v)
+PSS_KERNEL_INLINE void store(double* p, const VecD& v)
 {
   std::memcpy(p, &v, sizeof v);
 }
 
-VecD splat(double x)
+PSS_KERNEL_INLINE VecD splat(double x)
 {
   return VecD{} + x;
 }
 
-double lanesSum(const VecD& v)
+PSS_KERNEL_INLINE double lanesSum(const VecD& v)
 {
   double s = 0.0;
   for (int k = 0; k < SimdLanes; ++k)
@@ -114,7 +132,7 @@ double lanesSum(const VecD& v)
 // below 1e-17), and 2^k added to the exponent bits. Within one ulp of std::exp on [-708, 0];
 // 0 below -708 (where the true value is subnormal: a neighbour weighing less than 1e-307 of the
 // nearest one); NaN stays NaN.
-inline __attribute__((always_inline)) VecD expNonPositive(const VecD& v)
+PSS_KERNEL_INLINE VecD expNonPositive(const VecD& v)
 {
   constexpr double log2e = 1.4426950408889634074;
   constexpr double ln2hi = 6.93147180369123816490e-01;
@@ -153,13 +171,40 @@ inline __attribute__((always_inline)) VecD expNonPositive(const VecD& v)
 // Keeps the candidates inside the band (squared distance below @p limit, or equal to the nearest
 // one's), in order: writes their offsets and squared distances to @p nb from position 0 on and
 // returns how many there are. May write up to four entries past that count (the arrays have
-// that room).
-Eigen::Index compactCandidates(const double* px, const double* py, const double* pz, const double* sq,
+// that room). Candidates from @p i on, n kept so far; branch-free: every candidate is written,
+// only the kept ones advance n.
+PSS_KERNEL_INLINE Eigen::Index compactTail(const double* px, const double* py, const double* pz, const double* sq,
+  Eigen::Index i, Eigen::Index m, Eigen::Index n, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
+{
+  for (; i < m; ++i)
+  {
+    nb.dx[n] = px[i] - origin.x();
+    nb.dy[n] = py[i] - origin.y();
+    nb.dz[n] = pz[i] - origin.z();
+    nb.sqDist[n] = sq[i];
+    n += static_cast<Eigen::Index>((sq[i] < limit) | (sq[i] == minSq));
+  }
+  return n;
+}
+
+Eigen::Index compactCandidatesBaseline(const double* px, const double* py, const double* pz, const double* sq,
   Eigen::Index m, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
+{
+  return compactTail(px, py, pz, sq, 0, m, 0, origin, limit, minSq, nb);
+}
+
+#if PSS_KERNEL_DISPATCH
+// The lanes of v picked by perm (pairs of 32-bit indices), in order.
+PSS_TARGET_AVX2 inline __m256d moveDownAvx2(__m256d v, __m256i perm)
+{
+  return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), perm));
+}
+
+PSS_TARGET_AVX2 Eigen::Index compactCandidatesAvx2(const double* px, const double* py, const double* pz,
+  const double* sq, Eigen::Index m, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
 {
   Eigen::Index n = 0;
   Eigen::Index i = 0;
-#if defined(__AVX2__)
   // Four candidates at a time: the kept ones are moved to the front of the vector by a permutation
   // chosen from the 4-bit mask, and the whole vector is stored at n.
   static const auto permutations = [] {
@@ -184,9 +229,6 @@ Eigen::Index compactCandidates(const double* px, const double* py, const double*
   const __m256d oz = _mm256_set1_pd(origin.z());
   const __m256d lim = _mm256_set1_pd(limit);
   const __m256d nearest = _mm256_set1_pd(minSq);
-  auto moveDown = [](__m256d v, __m256i perm) {
-    return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), perm));
-  };
   for (; i + 4 <= m; i += 4)
   {
     const __m256d d = _mm256_loadu_pd(sq + i);
@@ -195,23 +237,171 @@ Eigen::Index compactCandidates(const double* px, const double* py, const double*
     const int mask = _mm256_movemask_pd(keep);
     const __m256i perm =
       _mm256_loadu_si256(reinterpret_cast<const __m256i*>(permutations[static_cast<std::size_t>(mask)].data()));
-    _mm256_storeu_pd(nb.dx.data() + n, moveDown(_mm256_sub_pd(_mm256_loadu_pd(px + i), ox), perm));
-    _mm256_storeu_pd(nb.dy.data() + n, moveDown(_mm256_sub_pd(_mm256_loadu_pd(py + i), oy), perm));
-    _mm256_storeu_pd(nb.dz.data() + n, moveDown(_mm256_sub_pd(_mm256_loadu_pd(pz + i), oz), perm));
-    _mm256_storeu_pd(nb.sqDist.data() + n, moveDown(d, perm));
+    _mm256_storeu_pd(nb.dx.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(px + i), ox), perm));
+    _mm256_storeu_pd(nb.dy.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(py + i), oy), perm));
+    _mm256_storeu_pd(nb.dz.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(pz + i), oz), perm));
+    _mm256_storeu_pd(nb.sqDist.data() + n, moveDownAvx2(d, perm));
     n += __builtin_popcount(static_cast<unsigned>(mask));
   }
+  return compactTail(px, py, pz, sq, i, m, n, origin, limit, minSq, nb);
+}
 #endif
-  // Branch-free: every candidate is written, only the kept ones advance n.
-  for (; i < m; ++i)
+
+// Weights w = exp(-(d^2 - minSq) / h^2) of the first @p padded neighbours into @p weight, and
+// sums[] = {sum w, sum w dx, sum w dy, sum w dz}.
+PSS_KERNEL_INLINE void weightsBody(const double* sqDist, const double* dx, const double* dy, const double* dz,
+  double* weight, Eigen::Index padded, double minSq, double invH2, double* sums)
+{
+  const VecD nearestSq = splat(minSq);
+  const VecD scale = splat(-invH2);
+  VecD sw{}, sx{}, sy{}, sz{};
+  for (Eigen::Index i = 0; i < padded; i += SimdLanes)
   {
-    nb.dx[n] = px[i] - origin.x();
-    nb.dy[n] = py[i] - origin.y();
-    nb.dz[n] = pz[i] - origin.z();
-    nb.sqDist[n] = sq[i];
-    n += static_cast<Eigen::Index>((sq[i] < limit) | (sq[i] == minSq));
+    const VecD w = expNonPositive((load(sqDist + i) - nearestSq) * scale);
+    store(weight + i, w);
+    sw += w;
+    sx += w * load(dx + i);
+    sy += w * load(dy + i);
+    sz += w * load(dz + i);
   }
-  return n;
+  sums[0] = lanesSum(sw);
+  sums[1] = lanesSum(sx);
+  sums[2] = lanesSum(sy);
+  sums[3] = lanesSum(sz);
+}
+
+PSS_KERNEL_INLINE void expBody(const double* x, double* out, Eigen::Index n)
+{
+  Eigen::Index i = 0;
+  for (; i + SimdLanes <= n; i += SimdLanes)
+  {
+    store(out + i, expNonPositive(load(x + i)));
+  }
+  for (; i < n; ++i)
+  {
+    VecD v{};
+    v[0] = x[i];
+    out[i] = expNonPositive(v)[0];
+  }
+}
+
+// sum_i w_i c_i c_i^T with c_i = (dx_i, dy_i, dz_i) - m: s[] = {xx, xy, xz, yy, yz, zz}.
+PSS_KERNEL_INLINE void scatterBody(const double* weight, const double* dx, const double* dy, const double* dz,
+  Eigen::Index count, double mx0, double my0, double mz0, double* s)
+{
+  const VecD mx = splat(mx0);
+  const VecD my = splat(my0);
+  const VecD mz = splat(mz0);
+  VecD xx{}, xy{}, xz{}, yy{}, yz{}, zz{};
+  for (Eigen::Index i = 0; i < count; i += SimdLanes)
+  {
+    const VecD w = load(weight + i);
+    const VecD cx = load(dx + i) - mx;
+    const VecD cy = load(dy + i) - my;
+    const VecD cz = load(dz + i) - mz;
+    const VecD wx = w * cx;
+    const VecD wy = w * cy;
+    xx += wx * cx;
+    xy += wx * cy;
+    xz += wx * cz;
+    yy += wy * cy;
+    yz += wy * cz;
+    zz += w * cz * cz;
+  }
+  s[0] = lanesSum(xx);
+  s[1] = lanesSum(xy);
+  s[2] = lanesSum(xz);
+  s[3] = lanesSum(yy);
+  s[4] = lanesSum(yz);
+  s[5] = lanesSum(zz);
+}
+
+// sum_i w_i s_i^k (k = 1..4) with s_i = a . (dx_i, dy_i, dz_i).
+PSS_KERNEL_INLINE void momentsBody(const double* weight, const double* dx, const double* dy, const double* dz,
+  Eigen::Index count, double ax0, double ay0, double az0, double* out)
+{
+  const VecD ax = splat(ax0);
+  const VecD ay = splat(ay0);
+  const VecD az = splat(az0);
+  VecD m1{}, m2{}, m3{}, m4{};
+  for (Eigen::Index i = 0; i < count; i += SimdLanes)
+  {
+    const VecD s = ax * load(dx + i) + ay * load(dy + i) + az * load(dz + i);
+    const VecD ws = load(weight + i) * s;
+    const VecD ws2 = ws * s;
+    m1 += ws;
+    m2 += ws2;
+    m3 += ws2 * s;
+    m4 += ws2 * (s * s);
+  }
+  out[0] = lanesSum(m1);
+  out[1] = lanesSum(m2);
+  out[2] = lanesSum(m3);
+  out[3] = lanesSum(m4);
+}
+
+// One copy of every kernel per instruction set, and the table of the copy in use.
+struct KernelTable
+{
+  const char* name;
+  Eigen::Index (*compact)(const double*, const double*, const double*, const double*, Eigen::Index, const Vec3&,
+    double, double, Neighbourhood&);
+  void (*weights)(const double*, const double*, const double*, const double*, double*, Eigen::Index, double, double,
+    double*);
+  void (*exp)(const double*, double*, Eigen::Index);
+  void (*scatter)(const double*, const double*, const double*, const double*, Eigen::Index, double, double, double,
+    double*);
+  void (*moments)(const double*, const double*, const double*, const double*, Eigen::Index, double, double, double,
+    double*);
+};
+
+#define PSS_KERNEL_COPIES(SUFFIX, TARGET)                                                                        \
+  TARGET void weights##SUFFIX(const double* sqDist, const double* dx, const double* dy, const double* dz,          \
+    double* weight, Eigen::Index padded, double minSq, double invH2, double* sums)                                \
+  {                                                                                                              \
+    weightsBody(sqDist, dx, dy, dz, weight, padded, minSq, invH2, sums);                                         \
+  }                                                                                                              \
+  TARGET void exp##SUFFIX(const double* x, double* out, Eigen::Index n)                                         \
+  {                                                                                                              \
+    expBody(x, out, n);                                                                                          \
+  }                                                                                                              \
+  TARGET void scatter##SUFFIX(const double* w, const double* dx, const double* dy, const double* dz,             \
+    Eigen::Index count, double mx, double my, double mz, double* s)                                              \
+  {                                                                                                              \
+    scatterBody(w, dx, dy, dz, count, mx, my, mz, s);                                                            \
+  }                                                                                                              \
+  TARGET void moments##SUFFIX(const double* w, const double* dx, const double* dy, const double* dz,             \
+    Eigen::Index count, double ax, double ay, double az, double* s)                                              \
+  {                                                                                                              \
+    momentsBody(w, dx, dy, dz, count, ax, ay, az, s);                                                            \
+  }
+
+PSS_KERNEL_COPIES(Baseline, )
+#if PSS_KERNEL_DISPATCH
+PSS_KERNEL_COPIES(Avx2, PSS_TARGET_AVX2)
+#endif
+
+const KernelTable& kernels()
+{
+  static const KernelTable table = [] {
+    const KernelTable baseline{ "baseline", compactCandidatesBaseline, weightsBaseline, expBaseline,
+      scatterBaseline, momentsBaseline };
+#if PSS_KERNEL_DISPATCH
+    const KernelTable avx2{ "avx2", compactCandidatesAvx2, weightsAvx2, expAvx2, scatterAvx2, momentsAvx2 };
+    const char* forced = std::getenv("PSS_SIMD");
+    if (forced && std::strcmp(forced, "baseline") == 0)
+    {
+      return baseline;
+    }
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2"))
+    {
+      return avx2;
+    }
+#endif
+    return baseline;
+  }();
+  return table;
 }
 
 // The candidates of a thread's last k-d tree query: absolute coordinates, ordered by index.
@@ -406,7 +596,7 @@ void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& param
   const auto sq = cache.squaredDistances(nb.origin, candidateSq);
   const double minSq = sq.minCoeff();
   nb.resize(m);
-  const Eigen::Index n = compactCandidates(cache.px.data(), cache.py.data(), cache.pz.data(), sq.data(), m,
+  const Eigen::Index n = kernels().compact(cache.px.data(), cache.py.data(), cache.pz.data(), sq.data(), m,
     nb.origin, minSq + cache.band, minSq, nb);
   nb.count = n;
   nb.minSqDist = minSq;
@@ -418,20 +608,11 @@ void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& param
     nb.sqDist[i] = std::numeric_limits<double>::infinity();
   }
   // Weights, their sum and the first moments in one pass.
-  const VecD nearestSq = splat(minSq);
-  const VecD scale = splat(-nb.invH2);
-  VecD sw{}, sx{}, sy{}, sz{};
-  for (Eigen::Index i = 0; i < padded; i += SimdLanes)
-  {
-    const VecD w = expNonPositive((load(nb.sqDist.data() + i) - nearestSq) * scale);
-    store(nb.weight.data() + i, w);
-    sw += w;
-    sx += w * load(nb.dx.data() + i);
-    sy += w * load(nb.dy.data() + i);
-    sz += w * load(nb.dz.data() + i);
-  }
-  nb.weightSum = lanesSum(sw);
-  nb.moment = Vec3(lanesSum(sx), lanesSum(sy), lanesSum(sz));
+  double sums[4];
+  kernels().weights(nb.sqDist.data(), nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.weight.data(), padded, minSq,
+    nb.invH2, sums);
+  nb.weightSum = sums[0];
+  nb.moment = Vec3(sums[1], sums[2], sums[3]);
   nb.indexSerial = index.serial();
   nb.h = params.h;
   nb.cutoff = params.cutoff;
@@ -439,17 +620,12 @@ void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& param
 
 void expNonPositive(const double* x, double* out, Eigen::Index n)
 {
-  Eigen::Index i = 0;
-  for (; i + SimdLanes <= n; i += SimdLanes)
-  {
-    store(out + i, expNonPositive(load(x + i)));
-  }
-  for (; i < n; ++i)
-  {
-    VecD v{};
-    v[0] = x[i];
-    out[i] = expNonPositive(v)[0];
-  }
+  kernels().exp(x, out, n);
+}
+
+const char* kernelInstructionSet()
+{
+  return kernels().name;
 }
 
 Neighbourhood& threadNeighbourhood()
@@ -467,56 +643,27 @@ Vec3 centroidOffset(const Neighbourhood& nb)
 // neighbours (the padding after the last one weighs 0).
 Mat3 weightedScatter(const Neighbourhood& nb, const Vec3& m)
 {
-  const VecD mx = splat(m.x());
-  const VecD my = splat(m.y());
-  const VecD mz = splat(m.z());
-  VecD xx{}, xy{}, xz{}, yy{}, yz{}, zz{};
-  for (Eigen::Index i = 0; i < nb.count; i += SimdLanes)
-  {
-    const VecD w = load(nb.weight.data() + i);
-    const VecD cx = load(nb.dx.data() + i) - mx;
-    const VecD cy = load(nb.dy.data() + i) - my;
-    const VecD cz = load(nb.dz.data() + i) - mz;
-    const VecD wx = w * cx;
-    const VecD wy = w * cy;
-    xx += wx * cx;
-    xy += wx * cy;
-    xz += wx * cz;
-    yy += wy * cy;
-    yz += wy * cz;
-    zz += w * cz * cz;
-  }
+  double s[6];
+  kernels().scatter(nb.weight.data(), nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.count, m.x(), m.y(), m.z(), s);
   Mat3 c;
-  c(0, 0) = lanesSum(xx);
-  c(1, 1) = lanesSum(yy);
-  c(2, 2) = lanesSum(zz);
-  c(0, 1) = c(1, 0) = lanesSum(xy);
-  c(0, 2) = c(2, 0) = lanesSum(xz);
-  c(1, 2) = c(2, 1) = lanesSum(yz);
+  c(0, 0) = s[0];
+  c(1, 1) = s[3];
+  c(2, 2) = s[5];
+  c(0, 1) = c(1, 0) = s[1];
+  c(0, 2) = c(2, 0) = s[2];
+  c(1, 2) = c(2, 1) = s[4];
   return c;
 }
 
 LineMoments lineMoments(const Neighbourhood& nb, const Vec3& a)
 {
-  const VecD ax = splat(a.x());
-  const VecD ay = splat(a.y());
-  const VecD az = splat(a.z());
-  VecD m1{}, m2{}, m3{}, m4{};
-  for (Eigen::Index i = 0; i < nb.count; i += SimdLanes)
-  {
-    const VecD s = ax * load(nb.dx.data() + i) + ay * load(nb.dy.data() + i) + az * load(nb.dz.data() + i);
-    const VecD ws = load(nb.weight.data() + i) * s;
-    const VecD ws2 = ws * s;
-    m1 += ws;
-    m2 += ws2;
-    m3 += ws2 * s;
-    m4 += ws2 * (s * s);
-  }
+  double s[4];
+  kernels().moments(nb.weight.data(), nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.count, a.x(), a.y(), a.z(), s);
   LineMoments out;
-  out.s1 = lanesSum(m1);
-  out.s2 = lanesSum(m2);
-  out.s3 = lanesSum(m3);
-  out.s4 = lanesSum(m4);
+  out.s1 = s[0];
+  out.s2 = s[1];
+  out.s3 = s[2];
+  out.s4 = s[3];
   return out;
 }
 

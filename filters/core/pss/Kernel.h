@@ -105,6 +105,11 @@ void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& param
  */
 void expNonPositive(const double* x, double* out, Eigen::Index n);
 
+/// The instruction set of the vector kernels in use: "avx2" where the CPU has it, else "baseline"
+/// (x86-64's SSE2). Chosen at the first call; the environment variable PSS_SIMD=baseline forces
+/// "baseline". Both give bitwise the same results (see Kernel.cxx).
+const char* kernelInstructionSet();
+
 /**
  * The calling thread's shared Neighbourhood, for evaluations that gather and then only read it
  * (no nested gather while they use it). Sharing it lets consecutive evaluations at the same point,

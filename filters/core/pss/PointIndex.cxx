@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pss/PointIndex.h"
 
-#include <nanoflann.hpp>
+#include "pss/NanoflannInternals.h" // nanoflann, and the internals PointIndex reads
 
 #include <algorithm>
 #include <array>
@@ -162,11 +162,12 @@ PointIndex::PointIndex(const std::vector<Vec3>& points, int dimension)
     [&](auto& tree) {
       std::vector<Vec3> ordered(Points.size());
       std::vector<std::size_t> ids(Points.size());
+      auto& permutation = nanoflann_internals::permutation(*tree);
       for (std::size_t i = 0; i < Points.size(); ++i)
       {
-        ordered[i] = Points[tree->vAcc[i]];
-        ids[i] = OriginalIds[tree->vAcc[i]];
-        tree->vAcc[i] = static_cast<std::uint32_t>(i);
+        ordered[i] = Points[permutation[i]];
+        ids[i] = OriginalIds[permutation[i]];
+        permutation[i] = static_cast<std::uint32_t>(i);
       }
       Points.swap(ordered);
       OriginalIds.swap(ids);
@@ -244,28 +245,28 @@ template <class Node, int D>
 void collectLeaves(const Node* node, const double* q, double sqRadius, double boxSqDist,
   std::array<double, D>& dist, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out)
 {
-  if (node->child1 == nullptr && node->child2 == nullptr)
+  namespace nf = nanoflann_internals;
+  if (nf::isLeaf(*node))
   {
-    out.emplace_back(static_cast<std::uint32_t>(node->node_type.lr.left),
-      static_cast<std::uint32_t>(node->node_type.lr.right));
+    out.emplace_back(static_cast<std::uint32_t>(nf::leafBegin(*node)), static_cast<std::uint32_t>(nf::leafEnd(*node)));
     return;
   }
-  const int axis = node->node_type.sub.divfeat;
+  const int axis = nf::axis(*node);
   const double saved = dist[axis];
-  // child1 holds the points with coordinate <= divlow, child2 those >= divhigh.
-  const double below = q[axis] - node->node_type.sub.divlow;
+  // The low child holds the points with coordinate <= low, the high child those >= high.
+  const double below = q[axis] - nf::low(*node);
   const double first = below > 0.0 ? below * below : saved;
   if (boxSqDist - saved + first < sqRadius)
   {
     dist[axis] = first;
-    collectLeaves<Node, D>(node->child1, q, sqRadius, boxSqDist - saved + first, dist, out);
+    collectLeaves<Node, D>(nf::lowChild(*node), q, sqRadius, boxSqDist - saved + first, dist, out);
   }
-  const double above = node->node_type.sub.divhigh - q[axis];
+  const double above = nf::high(*node) - q[axis];
   const double second = above > 0.0 ? above * above : saved;
   if (boxSqDist - saved + second < sqRadius)
   {
     dist[axis] = second;
-    collectLeaves<Node, D>(node->child2, q, sqRadius, boxSqDist - saved + second, dist, out);
+    collectLeaves<Node, D>(nf::highChild(*node), q, sqRadius, boxSqDist - saved + second, dist, out);
   }
   dist[axis] = saved;
 }
@@ -349,20 +350,23 @@ PointIndex::LeafRanges& PointIndex::leavesInBall(const Vec3& x, double sqRadius)
   }
   const Vec3 q = restrict(x);
   Impl->visit([&](const auto& tree) {
-    constexpr int D = static_cast<int>(std::tuple_size<decltype(tree.root_bbox)>::value);
+    using Tree = std::decay_t<decltype(tree)>;
+    const auto& box = nanoflann_internals::rootBox(tree);
+    constexpr int D = static_cast<int>(std::tuple_size<std::decay_t<decltype(box)>>::value);
     std::array<double, D> dist{};
     double boxSqDist = 0.0;
     for (int d = 0; d < D; ++d)
     {
-      const double lo = tree.root_bbox[d].low - q[d];
-      const double hi = q[d] - tree.root_bbox[d].high;
+      const double lo = box[d].low - q[d];
+      const double hi = q[d] - box[d].high;
       const double gap = std::max({ lo, hi, 0.0 });
       dist[d] = gap * gap;
       boxSqDist += dist[d];
     }
     if (boxSqDist < sqRadius)
     {
-      collectLeaves<std::remove_pointer_t<decltype(tree.root_node)>, D>(tree.root_node, q.data(), sqRadius, boxSqDist, dist, ranges);
+      collectLeaves<nanoflann_internals::Node<Tree>, D>(
+        nanoflann_internals::rootNode(tree), q.data(), sqRadius, boxSqDist, dist, ranges);
     }
   });
   return ranges;
