@@ -27,7 +27,9 @@
  * crossing that became the vertex), `Displacement` (from the grid crossing to the vertex),
  * `Iterations`, `StopReason`. Field data: `ScaleFactor` and `Dimension` (as every filter), the
  * parameters `CellSize`, `Band` (in h), and the counts `BandCells`, `GridVertices`, `Crossings`,
- * `DroppedVertices`, `Components`, `BoundaryEdges`, `NonManifoldEdges`, `EulerCharacteristic`.
+ * `DroppedVertices` (of which `MaximumCrossings`), `SeamSimplices`, `FoldedTriangles`,
+ * `UndefinedGridVertices` (why parts are missing), `Components`, `BoundaryEdges`,
+ * `NonManifoldEdges`, `EulerCharacteristic`.
  *
  * Errors (vtkErrorMacro, empty output): an empty cloud, h <= 0, invalid parameters, and a band
  * of more than MaximumNumberOfBandCells cells (refused before it is allocated, with the count).

@@ -119,9 +119,6 @@ public:
   void classifyCrossing(std::size_t i);
   SurfaceMesh finish();
 
-  /// Grid spacing in absolute units.
-  double cellLength() const { return Cell; }
-
 private:
   using Key = std::uint64_t;
   struct CornerValue
