@@ -205,7 +205,8 @@ LINE_ARRAYS = ["Converged", "StopReason", "StartPointId"]
 MESH_ARRAYS = ["Normals", "Stability", "Energy", "DomainLabel", "DistanceToCloud", "NormalAngle", "StartAngle",
                "StartStability", "Displacement", "Iterations", "StopReason"]
 MESH_FIELDS = ["ScaleFactor", "Dimension", "CellSize", "Band", "BandCells", "GridVertices", "Crossings",
-               "DroppedVertices", "Components", "BoundaryEdges", "NonManifoldEdges", "EulerCharacteristic"]
+               "DroppedVertices", "MaximumCrossings", "SeamSimplices", "FoldedTriangles",
+               "UndefinedGridVertices", "Components", "BoundaryEdges", "NonManifoldEdges", "EulerCharacteristic"]
 PASSED = ["DistanceToShape"]  # the start / probe points' own array, passed through
 started = time.time()
 
