@@ -37,7 +37,7 @@ vtkSmartPointer<vtkPolyData> Sphere(double noise = 0.01)
   source->SetSceneToSphere();
   source->SetDimension(3);
   source->SetSize(40.0); // radius 20 h with h = 1
-  source->SetNumberOfPoints(20000);
+  source->SetNumberOfPoints(40000); // dense enough that sampling gaps do not move vertices 0.05 h
   source->SetNoise(noise);
   source->Update();
   return source->GetOutput();
