@@ -545,7 +545,7 @@ int Mesh(const std::vector<std::string>& args)
   };
   t.Value("cell", "C", "grid cell size, in h, within [0.05, 100] (default 1)",
     [&](const std::string& v) { mesher->SetCellSize(inRange("cell", v, 0.05, 100.0)); });
-  t.Value("band", "B", "visit cells within B h of the cloud, within [0.1, 100] (default 2)",
+  t.Value("band", "B", "visit cells within B h of the cloud, within [0.1, 100] (default 1)",
     [&](const std::string& v) { mesher->SetBand(inRange("band", v, 0.1, 100.0)); });
   t.Switch("no-projection", "leave the vertices at the grid's zero crossings of g (default: projected)",
     [&]() { mesher->ProjectVerticesOff(); });
@@ -561,6 +561,10 @@ int Mesh(const std::vector<std::string>& args)
     [&](const std::string& v) { mesher->SetMaxSeamAngle(pss_cli::ToDouble("max-seam-angle", v)); });
   t.Value("max-fold-angle", "DEG", "drop triangles whose normal is farther off their vertices' n (default 60)",
     [&](const std::string& v) { mesher->SetMaxFoldAngle(pss_cli::ToDouble("max-fold-angle", v)); });
+  t.Value("max-hole-edges", "N", "3D: close holes of at most N edges where their centre is in the domain (default 20)",
+    [&](const std::string& v) { mesher->SetMaxHoleEdges(pss_cli::ToInt("max-hole-edges", v)); });
+  t.Value("min-piece-area", "A", "3D: remove pieces smaller than A h^2 (default 0: keep all)",
+    [&](const std::string& v) { mesher->SetMinPieceArea(pss_cli::ToDouble("min-piece-area", v)); });
   std::vector<std::string> positional;
   if (!ParseCommand("mesh", "CLOUD -o FILE [options]",
         "Meshes the point-set surface of CLOUD where it is defined: triangles in 3D (polylines in 2D) with\n"

@@ -147,6 +147,8 @@ void AddStatistics(const pss::MeshStatistics& st, vtkFieldData* fd)
     { "MaximumCrossings", static_cast<long long>(st.maximumCrossings) },
     { "SeamSimplices", static_cast<long long>(st.seamSimplices) },
     { "FoldedTriangles", static_cast<long long>(st.foldedSimplices) },
+    { "RemovedPieces", static_cast<long long>(st.removedPieces) },
+    { "ClosedHoles", static_cast<long long>(st.closedHoles) },
     { "UndefinedGridVertices", static_cast<long long>(st.undefinedVertices) },
     { "Components", static_cast<long long>(st.components) },
     { "BoundaryEdges", static_cast<long long>(st.boundaryEdges) },
@@ -179,6 +181,8 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.maxVertexTravel = this->MaxVertexTravel;
   options.maxSeamAngle = this->MaxSeamAngle;
   options.maxFoldAngle = this->MaxFoldAngle;
+  options.maxHoleEdges = static_cast<std::size_t>(this->MaxHoleEdges);
+  options.minPieceArea = this->MinPieceArea;
   options.maxBandCells = static_cast<std::size_t>(this->MaximumNumberOfBandCells);
   options.projection.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.domain.maxDistance = this->MaxDistance;
@@ -246,6 +250,8 @@ void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxVertexTravel: " << this->MaxVertexTravel << "\n";
   os << indent << "MaxSeamAngle: " << this->MaxSeamAngle << "\n";
   os << indent << "MaxFoldAngle: " << this->MaxFoldAngle << "\n";
+  os << indent << "MaxHoleEdges: " << this->MaxHoleEdges << "\n";
+  os << indent << "MinPieceArea: " << this->MinPieceArea << "\n";
   os << indent << "MaximumNumberOfBandCells: " << this->MaximumNumberOfBandCells << "\n";
   pss_vtk::PrintSurface(os, indent, this->Surface);
 }

@@ -86,7 +86,8 @@ public:
   /**
    * How far from the cloud cells are visited, in units of h, within [0.1, 100]: cells holding a
    * cloud point, grown by this much in every direction. It must reach past the noise and the
-   * surface's offset from the points. Default 2.
+   * surface's offset from the points. Default 1 (on the bunny, 2 visits 68% more cells for
+   * the same mesh).
    */
   vtkSetClampMacro(Band, double, 0.1, 100.0);
   vtkGetMacro(Band, double);
@@ -146,6 +147,28 @@ public:
   ///@}
 
   ///@{
+  /**
+   * 3D: a hole of the mesh bounded by at most this many edges is closed by a fan about the
+   * projection of its centre, when that projection is in the domain and the fan does not fold
+   * (a seam of the orientation or a dropped crossing left it, not the end of the domain). 0 (or
+   * 1, 2) closes none. Within [0, 1000]. Default 20.
+   */
+  vtkSetClampMacro(MaxHoleEdges, int, 0, 1000);
+  vtkGetMacro(MaxHoleEdges, int);
+  ///@}
+
+  ///@{
+  /**
+   * 3D: connected pieces of the mesh with a smaller area than this, in units of h^2, are removed
+   * (islands of a few cells). Within [0, 1e6]. Default 0, every piece kept: on the bunny scans
+   * 25 removes 108 islands (733 triangles, one piece left), but they are bits of real surface
+   * inside holes of the main piece, and the farthest vertex of bun_zipper goes from 0.94 to 1.19 mm.
+   */
+  vtkSetClampMacro(MinPieceArea, double, 0.0, 1e6);
+  vtkGetMacro(MinPieceArea, double);
+  ///@}
+
+  ///@{
   /// Refuse bands of more cells than this (about 60 bytes each). Default 2^24.
   vtkSetClampMacro(MaximumNumberOfBandCells, vtkIdType, 1, VTK_ID_MAX);
   vtkGetMacro(MaximumNumberOfBandCells, vtkIdType);
@@ -168,7 +191,7 @@ protected:
 
   vtkPointSetSurface* Surface = nullptr;
   double CellSize = 1.0;
-  double Band = 2.0;
+  double Band = 1.0;
   bool ProjectVertices = true;
   int Procedure = EXTREMAL;
   double MaxDistance = 1.0;
@@ -176,6 +199,8 @@ protected:
   double MaxVertexTravel = 2.0;
   double MaxSeamAngle = 80.0;
   double MaxFoldAngle = 60.0;
+  int MaxHoleEdges = 20;
+  double MinPieceArea = 0.0;
   vtkIdType MaximumNumberOfBandCells = vtkIdType(1) << 24;
   std::string TimingReport;
 

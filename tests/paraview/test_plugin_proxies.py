@@ -205,7 +205,7 @@ LINE_ARRAYS = ["Converged", "StopReason", "StartPointId"]
 MESH_ARRAYS = ["Normals", "Stability", "Energy", "DomainLabel", "DistanceToCloud", "NormalAngle", "StartAngle",
                "StartStability", "Displacement", "Iterations", "StopReason"]
 MESH_FIELDS = ["ScaleFactor", "Dimension", "CellSize", "Band", "BandCells", "GridVertices", "Crossings",
-               "DroppedVertices", "MaximumCrossings", "SeamSimplices", "FoldedTriangles",
+               "DroppedVertices", "MaximumCrossings", "SeamSimplices", "FoldedTriangles", "RemovedPieces", "ClosedHoles",
                "UndefinedGridVertices", "Components", "BoundaryEdges", "NonManifoldEdges", "EulerCharacteristic"]
 PASSED = ["DistanceToShape"]  # the start / probe points' own array, passed through
 started = time.time()
@@ -407,10 +407,11 @@ check(topology == [1, 0, 0, 2], "Mesher sphere: components, boundary edges, non-
 
 pss("mesh", path("sphere.vtp"), "--variant", "normalized", "--h", 3.5, "--cell", 0.7, "--band", 1.5, "--procedure", "plane",
     "--max-distance", 0.8, "--max-normal-angle", 25, "--max-vertex-travel", 1.5, "--max-seam-angle", 50,
-    "-o", path("mesh_params.vtp"))
+    "--max-fold-angle", 45, "--max-hole-edges", 8, "--min-piece-area", 5, "-o", path("mesh_params.vtp"))
 mesher = P["PointSetSurfaceMesh"](Input=reader("sphere.vtp"), Variant="Normalized MLS", AutomaticScale=0, ScaleFactor=3.5,
                                     CellSize=0.7, Band=1.5, Procedure="Plane", MaxDistance=0.8, MaxNormalAngle=25,
-                                    MaxVertexTravel=1.5, MaxSeamAngle=50)
+                                    MaxVertexTravel=1.5, MaxSeamAngle=50, MaxFoldAngle=45, MaxHoleEdges=8,
+                                    MinPieceArea=5)
 got = fetch(mesher)
 compare("Mesher normalized, plane, explicit knobs", got, read("mesh_params.vtp"), MESH_ARRAYS, [], MESH_FIELDS)
 check(field(got, "CellSize") == 0.7 and field(got, "Band") == 1.5, "Mesher: field data CellSize %s, Band %s" % (

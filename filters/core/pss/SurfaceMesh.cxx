@@ -37,6 +37,10 @@ void MeshOptions::validate() const
   {
     throw std::invalid_argument("the mesh's seam and fold angles must be in [0, 180] degrees");
   }
+  if (!(minPieceArea >= 0.0 && std::isfinite(minPieceArea)))
+  {
+    throw std::invalid_argument("the mesh's smallest piece area must be a finite number of h^2, at least 0");
+  }
   if (maxBandCells == 0)
   {
     throw std::invalid_argument("the mesh's largest band must be at least one cell");
@@ -580,6 +584,33 @@ std::vector<std::array<std::uint32_t, K>> keepCells(const std::vector<std::array
   return out;
 }
 
+// Per vertex: whether the connected piece of @p triangles it belongs to has an area of at least
+// @p minArea; counts the smaller pieces in @p smallPieces.
+std::vector<char> largePieces(const std::vector<std::array<std::uint32_t, 3>>& triangles,
+  const std::vector<Vec3>& points, double minArea, std::size_t& smallPieces)
+{
+  UnionFind pieces(points.size());
+  for (const auto& t : triangles)
+  {
+    pieces.unite(t[0], t[1]);
+    pieces.unite(t[0], t[2]);
+  }
+  std::vector<double> area(points.size(), -1.0); // at each piece's root; -1 where none is rooted
+  for (const auto& t : triangles)
+  {
+    double& a = area[pieces.find(t[0])];
+    a = std::max(a, 0.0) + 0.5 * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
+  }
+  smallPieces = static_cast<std::size_t>(
+    std::count_if(area.begin(), area.end(), [minArea](double a) { return a >= 0.0 && a < minArea; }));
+  std::vector<char> large(points.size());
+  for (std::size_t v = 0; v < points.size(); ++v)
+  {
+    large[v] = area[pieces.find(v)] >= minArea ? 1 : 0;
+  }
+  return large;
+}
+
 } // namespace
 
 void countTopology(SurfaceMesh& mesh)
@@ -681,12 +712,7 @@ SurfaceMesh SurfaceMesher::finish()
   // A cell whose own normal (from its final vertices) is more than maxFoldAngle off its vertices'
   // normals is folded over, or bridges two sheets whose crossings projected apart: dropped.
   // Degenerate cells (a tiny area or length) have no normal to judge and are kept.
-  const double foldCos = std::cos(Options.maxFoldAngle * M_PI / 180.0);
-  const double tiny = 1e-6 * Cell;
-  auto unfolded = [&](const Vec3& face, const Vec3& vertexNormals) {
-    return face.norm() <= tiny * (Dimension == 3 ? tiny : 1.0) ||
-      face.dot(vertexNormals) >= foldCos * face.norm() * vertexNormals.norm();
-  };
+  auto unfolded = [this](const Vec3& face, const Vec3& vertexNormals) { return isUnfolded(face, vertexNormals); };
   std::size_t folded = 0;
   auto keepTriangle = [&](const std::array<std::uint32_t, 3>& t) {
     if (!keep[t[0]] || !keep[t[1]] || !keep[t[2]])
@@ -711,7 +737,12 @@ SurfaceMesh SurfaceMesher::finish()
   std::vector<std::uint32_t> newIndex(n);
   if (Dimension == 3)
   {
-    mesh.triangles = keepCells(Triangles, n, keepTriangle, newIndex);
+    std::vector<std::array<std::uint32_t, 3>> kept;
+    std::copy_if(Triangles.begin(), Triangles.end(), std::back_inserter(kept), keepTriangle);
+    const double h = Surface.h();
+    const std::vector<char> large =
+      largePieces(kept, point, Options.minPieceArea * h * h, Statistics.removedPieces);
+    mesh.triangles = keepCells(kept, n, [&](const std::array<std::uint32_t, 3>& t) { return large[t[0]] != 0; }, newIndex);
     Statistics.droppedSimplices = Triangles.size() - mesh.triangles.size();
   }
   else
@@ -730,9 +761,147 @@ SurfaceMesh SurfaceMesher::finish()
       mesh.crossings.push_back(Crossings[i].point);
     }
   }
+  closeSmallHoles(mesh);
   mesh.statistics = Statistics;
   countTopology(mesh);
   return mesh;
+}
+
+bool SurfaceMesher::isUnfolded(const Vec3& face, const Vec3& vertexNormals) const
+{
+  const double foldCos = std::cos(Options.maxFoldAngle * M_PI / 180.0);
+  const double tiny = 1e-6 * Cell;
+  return face.norm() <= tiny * (Dimension == 3 ? tiny : 1.0) ||
+    face.dot(vertexNormals) >= foldCos * face.norm() * vertexNormals.norm();
+}
+
+std::vector<std::vector<std::uint32_t>> SurfaceMesher::smallHoles(const SurfaceMesh& mesh) const
+{
+  // Half-edges a -> b as their triangles wind them, sorted by their undirected edge: an edge met
+  // once is on a border, and the hole beside it is walked from each border vertex to the next.
+  struct HalfEdge
+  {
+    std::uint64_t edge;
+    std::uint32_t from, to;
+    bool operator<(const HalfEdge& o) const { return edge < o.edge; }
+  };
+  std::vector<HalfEdge> half;
+  half.reserve(3 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = t[k];
+      const std::uint32_t b = t[(k + 1) % 3];
+      half.push_back({ (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b), a, b });
+    }
+  }
+  std::sort(half.begin(), half.end());
+  const std::size_t nv = mesh.points.size();
+  std::vector<std::uint32_t> next(nv, NoIndex);
+  std::vector<char> pinched(nv, 0); // two border edges leave it: holes through it are left alone
+  std::vector<std::uint32_t> starts;
+  for (std::size_t i = 0; i < half.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < half.size() && half[j].edge == half[i].edge)
+    {
+      ++j;
+    }
+    if (j - i == 1)
+    {
+      pinched[half[i].from] |= next[half[i].from] != NoIndex ? 1 : 0;
+      next[half[i].from] = half[i].to;
+      starts.push_back(half[i].from);
+    }
+    i = j;
+  }
+  std::vector<std::vector<std::uint32_t>> holes;
+  std::vector<char> visited(nv, 0);
+  for (const std::uint32_t start : starts)
+  {
+    std::vector<std::uint32_t> loop;
+    bool simple = true;
+    std::uint32_t v = start;
+    while (v != NoIndex && !visited[v])
+    {
+      visited[v] = 1;
+      simple = simple && !pinched[v];
+      loop.push_back(v);
+      v = next[v];
+    }
+    if (simple && v == start && loop.size() >= 3 && loop.size() <= Options.maxHoleEdges)
+    {
+      holes.push_back(std::move(loop));
+    }
+  }
+  return holes;
+}
+
+void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh)
+{
+  if (Dimension != 3 || Options.maxHoleEdges < 3)
+  {
+    return;
+  }
+  for (const std::vector<std::uint32_t>& hole : smallHoles(mesh))
+  {
+    const std::size_t k = hole.size();
+    Vec3 centre = Vec3::Zero();
+    Vec3 normalSum = Vec3::Zero();
+    for (const std::uint32_t v : hole)
+    {
+      centre += mesh.points[v] / static_cast<double>(k);
+      normalSum += mesh.normals[v];
+    }
+    // The border's half-edges a -> b belong to the triangles around the hole: the triangles that
+    // close it run b -> a, about a new vertex where the hole's centre projects (three borders
+    // need none).
+    std::vector<std::array<std::uint32_t, 3>> fill;
+    DomainEvidence ev;
+    Vec3 apex = centre;
+    Vec3 apexNormal = normalSum;
+    const auto apexIndex = static_cast<std::uint32_t>(mesh.points.size());
+    if (k == 3)
+    {
+      fill.push_back({ { hole[0], hole[2], hole[1] } });
+    }
+    else
+    {
+      ev = classifyStart(Surface, centre, Options.projection, Options.domain);
+      const Direction& d = ev.projection.direction;
+      if (ev.label != DomainLabel::InDomain || (ev.projection.point - centre).norm() > Options.maxVertexTravel * Cell ||
+        !d.defined)
+      {
+        continue;
+      }
+      apex = Options.projectVertices ? ev.projection.point : centre;
+      apexNormal = d.n.dot(normalSum) < 0.0 ? Vec3(-d.n) : d.n;
+      for (std::size_t i = 0; i < k; ++i)
+      {
+        fill.push_back({ { hole[(i + 1) % k], hole[i], apexIndex } });
+      }
+    }
+    auto at = [&](std::uint32_t v) -> const Vec3& { return v == apexIndex ? apex : mesh.points[v]; };
+    auto normalAt = [&](std::uint32_t v) -> const Vec3& { return v == apexIndex ? apexNormal : mesh.normals[v]; };
+    const bool flat = std::all_of(fill.begin(), fill.end(), [&](const std::array<std::uint32_t, 3>& t) {
+      const Vec3 face = (at(t[1]) - at(t[0])).cross(at(t[2]) - at(t[0]));
+      return isUnfolded(face, normalAt(t[0]) + normalAt(t[1]) + normalAt(t[2]));
+    });
+    if (!flat)
+    {
+      continue;
+    }
+    if (k > 3)
+    {
+      mesh.points.push_back(apex);
+      mesh.normals.push_back(apexNormal);
+      mesh.evidence.push_back(std::move(ev));
+      mesh.crossings.push_back(centre);
+    }
+    mesh.triangles.insert(mesh.triangles.end(), fill.begin(), fill.end());
+    ++Statistics.closedHoles;
+  }
 }
 
 SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options, int threads, MeshTimings* timings)

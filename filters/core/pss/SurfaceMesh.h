@@ -28,7 +28,14 @@
  *    travelled at most maxVertexTravel cells, and when its own normal, once its vertices have
  *    moved to their projections (projectVertices), is within maxFoldAngle of its vertices' n (a
  *    cell whose crossings projected onto two different sheets, or folded over, is not). The
- *    unused vertices are dropped and the mesh's topology is counted.
+ *    unused vertices are dropped and the mesh's topology is counted. In 3D, connected pieces
+ *    smaller than minPieceArea h^2 are removed when asked (islands of a few cells).
+ * 7. close: a hole of the result bounded by at most maxHoleEdges edges, with no vertex shared by
+ *    two borders, is closed by a fan about the projection of its vertices' centroid, when that
+ *    projection is InDomain, travelled at most maxVertexTravel cells, and no triangle of the fan
+ *    folds (maxFoldAngle); a hole of three edges by one triangle. Such holes are where a seam of
+ *    the orientation, a fold or one dropped crossing left a few cells out, not where the domain
+ *    ends: the surface is defined at their centre, so the mesh covers it.
  * Every stage is deterministic: the result does not depend on the number of threads.
  */
 #pragma once
@@ -48,11 +55,17 @@ namespace pss
 struct MeshOptions
 {
   double cellSize = 1.0;        ///< grid spacing, in units of h (> 0)
-  double band = 2.0;            ///< how far from the cloud cells are visited, in units of h (> 0)
+  double band = 1.0;            ///< how far from the cloud cells are visited, in units of h (> 0)
   bool projectVertices = true;  ///< move the vertices onto the surface (else keep the grid crossings)
   double maxVertexTravel = 2.0; ///< in cells: a crossing whose projection moves farther is dropped
   double maxSeamAngle = 80.0;   ///< degrees: simplices across which oriented n turns more are skipped
   double maxFoldAngle = 60.0;   ///< degrees: cells whose own normal is farther off their vertices' n are dropped
+  /// Holes bounded by at most this many edges are closed where their centre projects InDomain
+  /// (3D; fewer than 3 turns closing off).
+  std::size_t maxHoleEdges = 20;
+  /// 3D: connected pieces of a smaller area, in units of h^2, are removed. 0 (the default) keeps
+  /// every piece: on the bunny the islands are bits of real surface inside holes of the main piece.
+  double minPieceArea = 0.0;
   std::size_t maxBandCells = std::size_t(1) << 24; ///< refuse larger bands (about 60 bytes a cell)
   /// How crossings are projected (Definition 1 by default). The tolerance is 1e-5 h, not the
   /// projection's 1e-6 h: vertices need no better, and the integral energy's steps can hover
@@ -78,6 +91,8 @@ struct MeshStatistics
   std::size_t maximumCrossings = 0;   ///< of which: g falls along n there (a maximum of e; a minimum with seekMaxima)
   std::size_t droppedSimplices = 0;   ///< triangles (segments) dropped, with those vertices or folded
   std::size_t foldedSimplices = 0;    ///< of which: cells turned more than maxFoldAngle off their vertices' n
+  std::size_t removedPieces = 0;      ///< pieces smaller than MeshOptions::minPieceArea (3D)
+  std::size_t closedHoles = 0;        ///< small holes closed (3D: see MeshOptions::maxHoleEdges)
   std::size_t components = 0;         ///< connected pieces of the result
   std::size_t boundaryEdges = 0;      ///< edges of one triangle (3D); polyline ends (2D)
   std::size_t nonManifoldEdges = 0;   ///< edges of three or more triangles (3D); vertices of 3+ segments (2D)
@@ -141,6 +156,11 @@ private:
   void linkNeighbours();
   void contourSimplex(const std::array<std::uint32_t, 4>& corners, const std::array<int, 4>& bits, int count);
   std::uint32_t crossingOn(std::uint32_t lower, std::uint32_t upper, int direction);
+  /// True when a cell of normal @p face (unnormalized) is within maxFoldAngle of @p vertexNormals' sum.
+  bool isUnfolded(const Vec3& face, const Vec3& vertexNormals) const;
+  /// The simple border loops of @p mesh of at most maxHoleEdges edges, each in its triangles' winding.
+  std::vector<std::vector<std::uint32_t>> smallHoles(const SurfaceMesh& mesh) const;
+  void closeSmallHoles(SurfaceMesh& mesh);
 
   const SurfaceDefinition& Surface;
   MeshOptions Options;

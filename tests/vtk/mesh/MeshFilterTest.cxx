@@ -117,7 +117,7 @@ TEST(MeshFilter, SphereArraysAndFieldData)
   }
   EXPECT_EQ(FieldValue(mesh, "ScaleFactor"), 1.0);
   EXPECT_EQ(FieldValue(mesh, "CellSize"), 1.0);
-  EXPECT_EQ(FieldValue(mesh, "Band"), 2.0);
+  EXPECT_EQ(FieldValue(mesh, "Band"), 1.0);
   EXPECT_EQ(FieldValue(mesh, "Components"), 1.0);
   EXPECT_EQ(FieldValue(mesh, "BoundaryEdges"), 0.0);
   EXPECT_EQ(FieldValue(mesh, "NonManifoldEdges"), 0.0);
