@@ -12,6 +12,7 @@
 #include "pss/ExtremalSurface.h"
 
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -29,6 +30,7 @@ struct vtkPointSetSurfaceDomainClassifier::vtkInternals
     double startStability = 0.0;
   };
   pss::DomainThresholds Thresholds;
+  std::unique_ptr<pss::CloudNormals> Normals; ///< of the current update's cloud
   std::vector<Evidence> Points;
 };
 
@@ -39,7 +41,7 @@ vtkPointSetSurfaceDomainClassifier::vtkPointSetSurfaceDomainClassifier()
 
 vtkPointSetSurfaceDomainClassifier::~vtkPointSetSurfaceDomainClassifier() = default;
 
-bool vtkPointSetSurfaceDomainClassifier::BeginProjection(const pss::SurfaceDefinition&, vtkIdType numberOfStarts)
+bool vtkPointSetSurfaceDomainClassifier::BeginProjection(const pss::SurfaceDefinition& surface, vtkIdType numberOfStarts)
 {
   pss::DomainThresholds thresholds;
   thresholds.maxDistance = this->MaxDistance;
@@ -54,6 +56,7 @@ bool vtkPointSetSurfaceDomainClassifier::BeginProjection(const pss::SurfaceDefin
     return false;
   }
   this->Internals->Thresholds = thresholds;
+  this->Internals->Normals = std::make_unique<pss::CloudNormals>(surface);
   this->Internals->Points.assign(static_cast<std::size_t>(numberOfStarts), vtkInternals::Evidence());
   return true;
 }
@@ -62,7 +65,8 @@ pss::ProjectionResult vtkPointSetSurfaceDomainClassifier::ProjectPoint(vtkIdType
   const pss::SurfaceDefinition& surface, const pss::ProjectionOptions& options)
 {
   pss::DomainEvidence ev =
-    pss::classifyStart(surface, pss::Vec3(start[0], start[1], start[2]), options, this->Internals->Thresholds);
+    pss::classifyStart(surface, pss::Vec3(start[0], start[1], start[2]), options, this->Internals->Thresholds,
+      this->Internals->Normals.get());
   vtkInternals::Evidence& out = this->Internals->Points[static_cast<std::size_t>(i)];
   out.label = ev.label;
   out.distanceToCloud = ev.distanceToCloud;

@@ -394,6 +394,7 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
       thresholds.validate();
     }
     const pss_vtk::FieldEvaluator evaluator(surface, orientation);
+    const pss::CloudNormals cloudNormals(surface);
     completed = pss_vtk::ParallelFor(
       this, n,
       [&](vtkIdType i) {
@@ -410,7 +411,7 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
         if (labelOut)
         {
           const pss::DomainEvidence ev =
-            pss::classifyStart(surface, pss::Vec3(x[0], x[1], x[2]), projection, thresholds);
+            pss::classifyStart(surface, pss::Vec3(x[0], x[1], x[2]), projection, thresholds, &cloudNormals);
           labelOut[i] = static_cast<int>(ev.label);
         }
       },

@@ -50,8 +50,46 @@ double unorientedAngleDegrees(const Vec3& a, const Vec3& b)
   return std::acos(c) * 180.0 / M_PI;
 }
 
-DomainEvidence classifyStart(
-  const SurfaceDefinition& s, const Vec3& start, const ProjectionOptions& options, const DomainThresholds& thresholds)
+Direction cloudNormalAt(const SurfaceDefinition& s, std::size_t point)
+{
+  // The weighted total-least-squares plane of the point's neighbours.
+  thread_local Neighbourhood nb;
+  gatherNeighbourhood(s.index(), s.parameters(), s.index().point(point), nb);
+  return smallestEigenDirection(covarianceAboutCentroid(nb), s.dimension(), s.parameters().minStability);
+}
+
+CloudNormals::CloudNormals(const SurfaceDefinition& s)
+  : Surface(s)
+  , Normal(s.index().size())
+  , State(std::make_unique<std::atomic<std::uint8_t>[]>(s.index().size()))
+{
+  for (std::size_t i = 0; i < s.index().size(); ++i)
+  {
+    State[i].store(0, std::memory_order_relaxed);
+  }
+}
+
+Direction CloudNormals::at(std::size_t point) const
+{
+  std::atomic<std::uint8_t>& state = State[point];
+  if (state.load(std::memory_order_acquire) == 2)
+  {
+    return Normal[point];
+  }
+  const Direction d = cloudNormalAt(Surface, point);
+  std::uint8_t expected = 0;
+  // Only the thread that claims the slot writes it; one that finds it being written keeps its own
+  // copy (the same value).
+  if (state.compare_exchange_strong(expected, 1, std::memory_order_acq_rel))
+  {
+    Normal[point] = d;
+    state.store(2, std::memory_order_release);
+  }
+  return d;
+}
+
+DomainEvidence classifyStart(const SurfaceDefinition& s, const Vec3& start, const ProjectionOptions& options,
+  const DomainThresholds& thresholds, const CloudNormals* normals)
 {
   DomainEvidence ev;
   ev.projection = project(s, start, options);
@@ -76,12 +114,8 @@ DomainEvidence classifyStart(
   ev.distanceToCloud = std::sqrt(nearest.second);
   ev.startAngle = unorientedAngleDegrees(r.startDirection.n, r.direction.n);
 
-  // The cloud's own normal where the projection landed: the weighted total-least-squares plane
-  // of the neighbours of the nearest cloud point.
-  thread_local Neighbourhood nb;
-  gatherNeighbourhood(index, s.parameters(), index.point(nearest.first), nb);
-  const Direction cloudNormal =
-    smallestEigenDirection(covarianceAboutCentroid(nb), s.dimension(), s.parameters().minStability);
+  // The cloud's own normal where the projection landed, at the nearest cloud point.
+  const Direction cloudNormal = normals ? normals->at(nearest.first) : cloudNormalAt(s, nearest.first);
   ev.normalAngle = unorientedAngleDegrees(r.direction.n, cloudNormal.n);
 
   const bool far = ev.distanceToCloud > thresholds.maxDistance * s.h();

@@ -20,6 +20,11 @@
 #include "pss/ExtremalSurface.h"
 #include "pss/SurfaceDefinition.h"
 
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
 namespace pss
 {
 
@@ -51,9 +56,32 @@ struct DomainEvidence
   double startStability = 0.0;   ///< stability of n at the start point
 };
 
-/// Projects @p start with @p options and labels the outcome (see the file comment).
+/**
+ * The cloud's own normal at each of its points (see the file comment), computed the first time a
+ * point's is asked for and kept: many start points share their nearest cloud point (a mesh's
+ * crossings, a dense grid). Safe to share between threads; a normal is a function of the cloud
+ * alone, so what a thread gets does not depend on which thread computed it first.
+ */
+class CloudNormals
+{
+public:
+  explicit CloudNormals(const SurfaceDefinition& s);
+  Direction at(std::size_t point) const;
+
+private:
+  const SurfaceDefinition& Surface;
+  mutable std::vector<Direction> Normal;
+  /// Per point: 0 not computed, 1 being computed by a thread, 2 stored in Normal.
+  mutable std::unique_ptr<std::atomic<std::uint8_t>[]> State;
+};
+
+/// The cloud's own normal at cloud point @p point, uncached.
+Direction cloudNormalAt(const SurfaceDefinition& s, std::size_t point);
+
+/// Projects @p start with @p options and labels the outcome (see the file comment). @p normals,
+/// when given, must be of @p s's cloud: the cloud's normals are then taken from it.
 DomainEvidence classifyStart(const SurfaceDefinition& s, const Vec3& start, const ProjectionOptions& options,
-  const DomainThresholds& thresholds);
+  const DomainThresholds& thresholds, const CloudNormals* normals = nullptr);
 
 /// Unoriented angle between two directions, in degrees within [0, 90].
 double unorientedAngleDegrees(const Vec3& a, const Vec3& b);

@@ -164,6 +164,7 @@ private:
 
   const SurfaceDefinition& Surface;
   MeshOptions Options;
+  CloudNormals Normals; ///< the cloud's own normals, for the domain test of the crossings
   int Dimension = 3;
   double Cell = 0.0;
   Vec3 Origin = Vec3::Zero();
