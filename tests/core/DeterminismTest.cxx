@@ -122,3 +122,31 @@ TEST(Determinism, OverflowingStartDoesNotChangeTheNextProjection)
   EXPECT_EQ(after[1].iterations, alone.iterations);
   EXPECT_EQ(std::memcmp(after[1].point.data(), alone.point.data(), 3 * sizeof(double)), 0);
 }
+
+// pss::CloudNormals fills its table from whichever thread asks first; every thread must get the
+// uncached value, bit for bit, and on a plane that is the plane's normal.
+TEST(Determinism, CloudNormalsSharedByThreadsAreTheUncachedOnes)
+{
+  const std::vector<Vec3> cloud = planeCloud(4.0, 0.25);
+  PointIndex index(cloud, 3);
+  const auto surface = makeSurface(Variant::CenterOfMass, index, params(0.5));
+  const CloudNormals normals(*surface);
+  const std::size_t n = index.size();
+  std::vector<Direction> got(2 * n);
+  // Each point asked for twice, from the two ends of the range, so the two threads race for it.
+  parallelFor(2 * n, 2, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k)
+    {
+      got[k] = normals.at(k < n ? k : 2 * n - 1 - k);
+    }
+  });
+  for (std::size_t k = 0; k < 2 * n; ++k)
+  {
+    const std::size_t i = k < n ? k : 2 * n - 1 - k;
+    const Direction truth = cloudNormalAt(*surface, i);
+    ASSERT_TRUE(got[k].defined) << i;
+    ASSERT_EQ(0, std::memcmp(got[k].n.data(), truth.n.data(), sizeof(double) * 3)) << i;
+    ASSERT_EQ(got[k].stability, truth.stability) << i;
+    ASSERT_GT(std::abs(got[k].n.z()), 1.0 - 1e-12) << i;
+  }
+}
