@@ -303,8 +303,12 @@ int Generate(const std::vector<std::string>& args)
   t.Value("noise", "SIGMA", "Gaussian noise (noisy-curve: at its noisy end) (default 0)",
     [&](const std::string& v) { source->SetNoise(pss_cli::ToDouble("noise", v)); });
   t.Value("seed", "N", "random seed (default 1)", [&](const std::string& v) { source->SetSeed(pss_cli::ToInt("seed", v)); });
-  t.Value("dimension", "D", "2 (xy-plane) or 3 (default 2)",
-    [&](const std::string& v) { source->SetDimension(2 + pss_cli::ToChoice("dimension", v, { "2", "3" })); });
+  bool dimensionGiven = false;
+  t.Value("dimension", "D", "2 (xy-plane) or 3 (default 3 for plane, sphere and two-sheets, else 2)",
+    [&](const std::string& v) {
+      source->SetDimension(2 + pss_cli::ToChoice("dimension", v, { "2", "3" }));
+      dimensionGiven = true;
+    });
   t.Value("corner-angle", "DEG", "angle between the corner's segments (default 60)",
     [&](const std::string& v) { source->SetCornerAngle(pss_cli::ToDouble("corner-angle", v)); });
   t.Value("gap", "G", "distance between the two sheets (default 10)",
@@ -318,6 +322,15 @@ int Generate(const std::vector<std::string>& args)
   if (!positional.empty())
   {
     throw UsageError{ "generate takes no input file" };
+  }
+  // A user asking for a sphere expects a sphere: the surface scenes are 3D unless told otherwise
+  // (their 2D versions, a circle, a line and two lines, stay one flag away).
+  const int scene = source->GetScene();
+  if (!dimensionGiven &&
+    (scene == vtkPointSetSurfaceCloudSource::PLANE || scene == vtkPointSetSurfaceCloudSource::SPHERE ||
+      scene == vtkPointSetSurfaceCloudSource::TWO_SHEETS))
+  {
+    source->SetDimension(3);
   }
   RequireOutput(run);
   pss_vtk::EnsureParallelBackend();

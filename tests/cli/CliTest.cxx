@@ -262,3 +262,38 @@ TEST(Cli, MeshRefusesBadCellsAndBands)
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("h must be"), std::string::npos) << r.output;
 }
+
+// The surface scenes are 3D unless --dimension 2 asks for their cross-sections (a sphere of radius
+// Size/2, or its equator); the curve scenes stay 2D.
+TEST(Cli, GenerateSurfaceScenesIn3DByDefault)
+{
+  struct Case
+  {
+    const char* args;
+    int axes; ///< how many axes the points spread along: the 3D sphere 3, its equator 2, the plane 2, its cross-section 1
+  };
+  for (const Case& c : { Case{ "--scene sphere", 3 }, Case{ "--scene plane", 2 }, Case{ "--scene two-sheets", 3 },
+         Case{ "--scene sphere --dimension 2", 2 }, Case{ "--scene plane --dimension 2", 1 },
+         Case{ "--scene circle", 2 }, Case{ "--scene noisy-curve", 2 } })
+  {
+    const std::string cloud = TempPath("generated-dimension.vtp");
+    const CommandResult r = RunCommand(Pss() + " generate " + c.args + " --count 500 --size 20 -o " + cloud);
+    ASSERT_EQ(r.exitCode, 0) << c.args << ": " << r.output;
+    vtkSmartPointer<vtkPolyData> pd = ReadVTP(cloud);
+    ASSERT_EQ(pd->GetNumberOfPoints(), 500) << c.args;
+    double b[6];
+    pd->GetBounds(b);
+    const int axes = (b[1] - b[0] > 1.0) + (b[3] - b[2] > 1.0) + (b[5] - b[4] > 1.0);
+    EXPECT_EQ(axes, c.axes) << c.args << ": bounds " << b[0] << " " << b[1] << " " << b[2] << " " << b[3] << " "
+                            << b[4] << " " << b[5];
+    if (std::string(c.args) == "--scene sphere")
+    {
+      for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+      {
+        double p[3];
+        pd->GetPoint(i, p);
+        ASSERT_NEAR(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), 10.0, 1e-9) << i;
+      }
+    }
+  }
+}
