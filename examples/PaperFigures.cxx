@@ -14,7 +14,8 @@
  * - fig05: energy glyphs and best-fitting lines at heights 0 .. 2 h above a line, MLS and e_I;
  * - fig06: the corner for Levin, normalized MLS, center of mass and integral: glyphs, sampled
  *   fields, streamlines of n, iso-contours of e(x, n(x)), surface points reached from 2000
- *   uniform random starts;
+ *   uniform random starts, and vtkPointSetSurfaceMesher's polylines (fig06_*_mesh.vtp, checked
+ *   against those end points; PaperFiguresExtra.cxx);
  * - fig03 / fig04 (PaperFiguresExtra.cxx): two planes through a point above the line with the
  *   weighted points and a chart of their energies; the legend of the energy plots;
  * - fig07: delta on a grid (intensity) and its iso-contours;
@@ -22,7 +23,9 @@
  *   energy glyphs, best-fitting lines, e(x, n(x)) as an image, the angle of n along paths across
  *   the noisy band (fig08_noisy_band.csv, all five definitions);
  * - fig09 / fig10: the noisy curve at h = 10 for Levin and integral: streamlines, iso-contours,
- *   minima (blue) and maxima (green) reached from random starts, near-singular points of n;
+ *   minima (blue) and maxima (green) reached from random starts, near-singular points of n, and
+ *   the mesher's polylines checked against the same starts' end points (fig09_levin_mesh.vtp,
+ *   fig10_integral_mesh.vtp);
  * - paper_table.csv (also printed): per scene and variant, the fraction of start points that land
  *   on the true curve, the number of spurious surface points, Levin's flip height and the domain
  *   half-width on the line scene;
@@ -737,12 +740,18 @@ int main(int argc, char** argv)
         integralSpurious = p.stats.spurious;
       }
       cornerBreakdown.push_back(BreakDownCorner(corner, v, p.points));
-      if (std::find(figure6Variants.begin(), figure6Variants.end(), v) != figure6Variants.end())
+      const bool figure = std::find(figure6Variants.begin(), figure6Variants.end(), v) != figure6Variants.end();
+      if (figure)
       {
         Label(p.points, VariantTitle(v), corner.h);
         Write(p.points, "fig06_" + VariantName(v) + "_surface_points.vtp");
       }
       Done("corner: project " + std::to_string(kCornerMinStarts) + " random starts, " + VariantName(v));
+      if (figure)
+      {
+        // The mesher's polylines over the same end points (no second projection).
+        FigureMesh(corner, v, p.points, "fig06_" + VariantName(v), "corner", checks);
+      }
     }
     const vtkIdType cornerStartCount = cornerStarts->GetNumberOfPoints();
     checks.push_back({ "corner.start_points", "uniform random starts in the corner's bounding box grown by 3 h",
@@ -814,6 +823,7 @@ int main(int argc, char** argv)
       Write(maximaPoints, stem + "_maxima.vtp");
       Done(stem.substr(0, 5) + ": seek maxima from the same starts (" + std::to_string(minimaPoints->GetNumberOfPoints()) +
         " minima, " + std::to_string(maximaPoints->GetNumberOfPoints()) + " maxima)");
+      FigureMesh(wide, v, minima.points, stem, "noisy10", checks);
       vtkSmartPointer<vtkImageData> field = SampleField(wide, v, kWideGridSpacing);
       Write(field, stem + "_field.vti");
       Write(Streamlines(field, wide, 1.5, 3.0), stem + "_streamlines.vtp");

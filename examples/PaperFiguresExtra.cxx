@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Figures 3, 4 and 8 of the main demo. Every energy and every n comes from the filters (through
-// PaperMeasures.h, EnergyGlyphs and the field sampler); the code here places samples, draws the
-// geometry of the figures (planes, residual segments, circles, the band, a chart) and reports.
+// Figures 3, 4 and 8 of the main demo, and the mesher's polylines over Figures 6, 9 and 10. Every
+// energy, every n and every polyline comes from the filters (through PaperMeasures.h, EnergyGlyphs
+// and the field sampler); the code here places samples, draws the geometry of the figures (planes,
+// residual segments, circles, the band, a chart) and reports.
 #include "PaperFiguresExtra.h"
 
 #include "vtkPointSetSurfaceFieldSampler.h"
@@ -388,6 +389,24 @@ std::vector<BandMeasure> Figure8(const Scene& noisy, std::vector<Check>& checks)
       Fixed(lv->medianVariationInBand, 1) + " deg) over n_I's (" + Fixed(in->medianVariationInBand, 1) + " deg)",
     factor, ">= " + Fixed(kSmoothnessFactor, 0), factor >= kSmoothnessFactor });
   return rows;
+}
+
+MeshAgreement FigureMesh(const Scene& scene, int variant, vtkPolyData* ends, const std::string& stem,
+  const std::string& checkPrefix, std::vector<Check>& checks)
+{
+  vtkSmartPointer<vtkPolyData> mesh = MeshScene(scene, variant);
+  const MeshAgreement a = MeasureMeshAgreement(mesh, ends, scene.h);
+  Label(mesh, VariantTitle(variant) + ": mesher polylines", scene.h);
+  Write(mesh, stem + "_mesh.vtp");
+  Done(stem + "_mesh: " + Describe(a));
+  const std::string near = Fixed(kOnCurveDistance, 1) + " h";
+  checks.push_back({ checkPrefix + "." + VariantName(variant) + "_mesh_agrees",
+    VariantTitle(variant) + ": the mesher's polylines agree with the projections: every on-curve end point within " +
+      near + " of a polyline (" + std::to_string(a.onCurveFar) + " of " + std::to_string(a.onCurve) +
+      " farther, farthest " + Fixed(a.farthestOnCurve, 3) + " h), and no polyline piece without an end point within " +
+      near + " (" + std::to_string(a.piecesWithoutEnds) + " of " + std::to_string(a.pieces) + ")",
+    static_cast<double>(a.Disagreements()), "== 0", a.Disagreements() == 0 });
+  return a;
 }
 
 void PrintAndWriteNoisyBand(const std::vector<BandMeasure>& rows)

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file PaperFiguresExtra.h
- * @brief Figures 3, 4 and 8 of the main demo (pss-paper-figures): their VTK files, their tables
- *        and their checked claims. The measurements are PaperMeasures.h's, shared with tests/paper.
+ * @brief Figures 3, 4 and 8 of the main demo (pss-paper-figures), and the mesher's polylines
+ *        over Figures 6, 9 and 10: their VTK files, their tables and their checked claims. The
+ *        measurements are PaperMeasures.h's, shared with tests/paper.
  */
 #ifndef PaperFiguresExtra_h
 #define PaperFiguresExtra_h
@@ -10,6 +11,7 @@
 #include "PaperMeasures.h"
 #include "PaperOutput.h"
 
+#include <string>
 #include <vector>
 
 namespace pss_paper
@@ -44,6 +46,15 @@ void Figure4(const Scene& line);
  * band measures for all five definitions. Appends the three fig08 checks.
  */
 std::vector<BandMeasure> Figure8(const Scene& noisy, std::vector<Check>& checks);
+
+/**
+ * The polylines of vtkPointSetSurfaceMesher for @p variant on @p scene (MeshScene), written as
+ * @p stem + "_mesh.vtp", and their agreement with @p ends, the end points of the projections the
+ * figure already made (Project's output with `Outcome`; MeasureMeshAgreement). Reports the counts
+ * with Done and appends the check @p checkPrefix + "." + variant + "_mesh_agrees".
+ */
+MeshAgreement FigureMesh(const Scene& scene, int variant, vtkPolyData* ends, const std::string& stem,
+  const std::string& checkPrefix, std::vector<Check>& checks);
 
 /// Prints Figure 3's energies and writes fig03_plane_energies.csv.
 void PrintAndWriteFigure3(const Figure3Result& r);

@@ -3,7 +3,9 @@
 
 #include "vtkPointSetSurfaceEnergyGlyphs.h"
 #include "vtkPointSetSurfaceFieldSampler.h"
+#include "vtkPointSetSurfaceMesher.h"
 
+#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
 #include "vtkNew.h"
@@ -11,8 +13,11 @@
 #include "vtkPolyData.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <numeric>
+#include <sstream>
 #include <stdexcept>
 
 namespace pss_paper
@@ -43,6 +48,65 @@ double UnorientedAngle(const pss::Vec3& a, const pss::Vec3& b)
 {
   const double c = std::min(1.0, std::abs(a.dot(b)) / (a.norm() * b.norm()));
   return std::acos(c) * 180.0 / M_PI;
+}
+
+// A polyline segment in the xy plane, with the connected piece it belongs to.
+struct Segment
+{
+  std::array<double, 2> a;
+  std::array<double, 2> b;
+  vtkIdType piece;
+};
+
+double DistanceToSegment(const double p[3], const Segment& s)
+{
+  const double dx = s.b[0] - s.a[0];
+  const double dy = s.b[1] - s.a[1];
+  const double len2 = dx * dx + dy * dy;
+  double t = len2 > 0.0 ? ((p[0] - s.a[0]) * dx + (p[1] - s.a[1]) * dy) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(p[0] - (s.a[0] + t * dx), p[1] - (s.a[1] + t * dy));
+}
+
+// The segments of the mesh's line cells, each tagged with its connected piece (the root of its
+// vertices in a union-find); @p pieces is the number of distinct pieces.
+std::vector<Segment> Segments(vtkPolyData* mesh, vtkIdType& pieces)
+{
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  std::vector<vtkIdType> parent(static_cast<std::size_t>(n));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](vtkIdType x) {
+    while (parent[x] != x)
+    {
+      x = parent[x] = parent[parent[x]];
+    }
+    return x;
+  };
+  std::vector<std::array<vtkIdType, 2>> ids;
+  vtkIdType count = 0;
+  const vtkIdType* cell = nullptr;
+  vtkCellArray* lines = mesh->GetLines();
+  for (lines->InitTraversal(); lines->GetNextCell(count, cell);)
+  {
+    for (vtkIdType k = 0; k + 1 < count; ++k)
+    {
+      ids.push_back({ cell[k], cell[k + 1] });
+      parent[find(cell[k])] = find(cell[k + 1]);
+    }
+  }
+  std::vector<Segment> out;
+  std::vector<char> root(static_cast<std::size_t>(n), 0);
+  for (const auto& e : ids)
+  {
+    double a[3];
+    double b[3];
+    mesh->GetPoint(e[0], a);
+    mesh->GetPoint(e[1], b);
+    out.push_back({ { a[0], a[1] }, { b[0], b[1] }, find(e[0]) });
+    root[find(e[0])] = 1;
+  }
+  pieces = std::count(root.begin(), root.end(), 1);
+  return out;
 }
 
 } // namespace
@@ -224,6 +288,95 @@ BandMeasure MeasureNoisyBand(const Scene& noisy, int variant)
   m.medianMaxAngleInBand = Median(maxima);
   m.turnInOuterPartFraction = paths.empty() ? 0.0 : double(outer) / double(paths.size());
   return m;
+}
+
+// ---- Mesh polylines on the 2D scenes ------------------------------------------------------------
+
+vtkSmartPointer<vtkPolyData> MeshScene(const Scene& scene, int variant)
+{
+  vtkNew<vtkPointSetSurfaceMesher> mesher;
+  mesher->SetSurface(MakeSurface(scene, variant));
+  // Levin's and the normalized MLS have a narrow domain (h / sqrt 2 about the curve): every corner
+  // of a cell crossing the curve must lie in it.
+  const bool narrow = variant == vtkPointSetSurface::LEVIN_MLS || variant == vtkPointSetSurface::NORMALIZED_MLS;
+  mesher->SetCellSize(narrow ? 0.25 : 0.5);
+  mesher->SetInputData(scene.cloud);
+  mesher->Update();
+  // A copy detached from the filter, which goes out of scope here.
+  auto mesh = vtkSmartPointer<vtkPolyData>::New();
+  mesh->ShallowCopy(mesher->GetOutput());
+  return mesh;
+}
+
+MeshAgreement MeasureMeshAgreement(vtkPolyData* mesh, vtkPolyData* ends, double h)
+{
+  vtkDataArray* outcome = ends->GetPointData()->GetArray("Outcome");
+  if (!outcome)
+  {
+    throw std::runtime_error("the projection end points have no Outcome array");
+  }
+  MeshAgreement m;
+  const std::vector<Segment> segments = Segments(mesh, m.pieces);
+  m.segments = static_cast<vtkIdType>(segments.size());
+  const double near = kOnCurveDistance * h;
+  std::vector<char> pieceSeen(static_cast<std::size_t>(mesh->GetNumberOfPoints()), 0);
+  double worst = 0.0;
+  for (vtkIdType i = 0; i < ends->GetNumberOfPoints(); ++i)
+  {
+    const int o = static_cast<int>(outcome->GetComponent(i, 0));
+    if (o == NOT_CONVERGED)
+    {
+      continue;
+    }
+    double p[3];
+    ends->GetPoint(i, p);
+    double best = std::numeric_limits<double>::infinity();
+    const Segment* nearest = nullptr;
+    for (const Segment& s : segments)
+    {
+      const double d = DistanceToSegment(p, s);
+      if (d < best)
+      {
+        best = d;
+        nearest = &s;
+      }
+    }
+    if (best <= near)
+    {
+      pieceSeen[static_cast<std::size_t>(nearest->piece)] = 1;
+    }
+    if (o == ON_CURVE)
+    {
+      ++m.onCurve;
+      m.onCurveFar += best > near ? 1 : 0;
+      worst = std::max(worst, best);
+    }
+  }
+  m.farthestOnCurve = worst / h;
+  for (const Segment& s : segments)
+  {
+    char& seen = pieceSeen[static_cast<std::size_t>(s.piece)];
+    if (!seen)
+    {
+      if (m.piecesWithoutEnds == 0)
+      {
+        m.pieceWithoutEnds = pss::Vec3(s.a[0], s.a[1], 0.0);
+      }
+      ++m.piecesWithoutEnds;
+      seen = 1; // count each piece once
+    }
+  }
+  return m;
+}
+
+std::string Describe(const MeshAgreement& a)
+{
+  std::ostringstream s;
+  s << a.segments << " segments in " << a.pieces << " pieces; " << a.onCurve << " end points on the curve, "
+    << a.onCurveFar << " of them farther than " << kOnCurveDistance << " h from a polyline (farthest "
+    << a.farthestOnCurve << " h); " << a.piecesWithoutEnds << " pieces without an end point within "
+    << kOnCurveDistance << " h";
+  return s.str();
 }
 
 } // namespace pss_paper

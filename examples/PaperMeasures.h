@@ -3,12 +3,14 @@
  * @file PaperMeasures.h
  * @brief The numbers behind Figures 3 and 8 of Amenta & Kil, measured through the
  *        PointSetSurfaces VTK filters: the energies of two planes through a point above a line
- *        (Figure 3) and the angle of n to the true normal across the noisy band (Figure 8).
+ *        (Figure 3), the angle of n to the true normal across the noisy band (Figure 8), and how
+ *        the mesher's polylines agree with the projections on the 2D scenes (Figures 6, 9, 10).
  *
  * Shared by the main demo (pss-paper-figures) and the acceptance tests (tests/paper), like
- * PaperScenes.h. Nothing here evaluates n or e: n comes from vtkPointSetSurfaceFieldSampler and
- * e(x, a) from vtkPointSetSurfaceEnergyGlyphs; this file only places the samples and reduces the
- * filters' outputs to angles, distances and crossings.
+ * PaperScenes.h. Nothing here evaluates n or e: n comes from vtkPointSetSurfaceFieldSampler,
+ * e(x, a) from vtkPointSetSurfaceEnergyGlyphs and the polylines from vtkPointSetSurfaceMesher;
+ * this file only places the samples and reduces the filters' outputs to angles, distances and
+ * crossings.
  */
 #ifndef PaperMeasures_h
 #define PaperMeasures_h
@@ -16,6 +18,7 @@
 #include "PaperScenes.h"
 
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace pss_paper
@@ -127,6 +130,43 @@ constexpr double kLevinTurnHighSigmas = kBandSigmas;
 constexpr double kIntegralMedianMaxAngleInBand = 15.0;
 /// n_MLS's median total variation within the band over n_I's (measured 16.3).
 constexpr double kSmoothnessFactor = 10.0;
+///@}
+
+/// @name The mesher's polylines on the 2D scenes (Figures 6, 9 and 10)
+///@{
+/**
+ * The surface of @p variant on @p scene as vtkPointSetSurfaceMesher's polylines (2D: one line
+ * cell per segment), with the filter's defaults except the cell size: 0.25 h for Levin's and the
+ * normalized MLS, 0.5 h otherwise.
+ */
+vtkSmartPointer<vtkPolyData> MeshScene(const Scene& scene, int variant);
+
+/// How a mesh's polylines and a set of projection end points agree (see MeasureMeshAgreement).
+struct MeshAgreement
+{
+  vtkIdType segments = 0;   ///< line segments of the mesh
+  vtkIdType pieces = 0;     ///< connected pieces of those segments
+  vtkIdType onCurve = 0;    ///< end points with Outcome ON_CURVE
+  vtkIdType onCurveFar = 0; ///< of those, farther than kOnCurveDistance h from every segment
+  double farthestOnCurve = 0.0; ///< largest distance of an on-curve end point to the segments, in h
+  /// Pieces with no converged end point (any Outcome but NOT_CONVERGED) within kOnCurveDistance h:
+  /// polyline the projections do not confirm.
+  vtkIdType piecesWithoutEnds = 0;
+  pss::Vec3 pieceWithoutEnds = pss::Vec3::Zero(); ///< first vertex of the first such piece
+
+  /// What the checks bound: far on-curve end points plus unconfirmed pieces (0 when they agree).
+  vtkIdType Disagreements() const { return onCurveFar + piecesWithoutEnds; }
+};
+
+/**
+ * Compares @p mesh (MeshScene's line segments) with @p ends (Project's end points, with their
+ * `Outcome` array): distances in the xy plane from each end point to its nearest segment, in
+ * units of @p h. Throws std::runtime_error when @p ends has no `Outcome`.
+ */
+MeshAgreement MeasureMeshAgreement(vtkPolyData* mesh, vtkPolyData* ends, double h);
+
+/// One line of the numbers of @p a: segments, pieces, end points on the curve, far ones, farthest.
+std::string Describe(const MeshAgreement& a);
 ///@}
 
 } // namespace pss_paper

@@ -10,9 +10,12 @@ fig07_delta.png, fig09_levin_h10.png, fig10_integral_h10.png, fig03_planes.png, 
 fig08_noisy_band.png. Each panel is rendered on its
 own (2D, parallel projection) and the panels are put together with vtkImageAppend, then saved as
 8-bit palette PNGs (small enough for the README). PSS_KEEP_PANELS=1 keeps the single panels in
-OUTDIR/.panels.
+OUTDIR/.panels. Figures 6, 9 and 10 draw the polyline of vtkPointSetSurfaceMesher (fig06_*_mesh.vtp,
+fig09_levin_mesh.vtp, fig10_integral_mesh.vtp) over the surface points, with the result of its check
+against them from paper_checks.json.
 """
 import csv
+import json
 import os
 import shutil
 import struct
@@ -39,6 +42,7 @@ BLUE = [0.1, 0.3, 0.95]
 GREEN = [0.0, 0.7, 0.2]
 YELLOW = [1.0, 0.85, 0.0]
 STEEL = [0.35, 0.5, 0.7]
+MAGENTA = [0.85, 0.0, 0.75]
 
 
 # --------------------------------------------------------------------------------------------
@@ -66,6 +70,16 @@ def table():
 
 def pct(row):
     return "%.1f %%" % (100.0 * float(row["on_curve_fraction"]))
+
+
+def checks():
+    with open(path("paper_checks.json")) as f:
+        return {c["name"]: c for c in json.load(f)["checks"]}
+
+
+def mesh_agreement(check):
+    """The result of a *_mesh_agrees check, for a caption: far end points plus unconfirmed pieces."""
+    return "%s (%d disagreements)" % ("agrees" if check["pass"] else "DISAGREES", int(check["value"]))
 
 
 # --------------------------------------------------------------------------------------------
@@ -116,7 +130,7 @@ def points(src, view, color, size, spheres=False, z=1.0):
     return d
 
 
-def lines(src, view, color, width=1.0, opacity=1.0):
+def lines(src, view, color, width=1.0, opacity=1.0, z=0.0):
     d = Show(src, view)
     d.ColorArrayName = ["POINTS", ""]
     d.SetRepresentationType("Wireframe")
@@ -124,7 +138,13 @@ def lines(src, view, color, width=1.0, opacity=1.0):
     d.AmbientColor = color
     d.DiffuseColor = color
     d.Opacity = opacity
+    d.Position = [0.0, 0.0, z]  # above 1: in front of the points
     return d
+
+
+def mesh_polyline(name, view):
+    """The mesher's polyline, thick and in front of the end points that it is checked against."""
+    return lines(poly(name), view, MAGENTA, 2.5, 1.0, 1.5)
 
 
 def by_value(src, view, array, association, rng, preset="Grayscale", invert=False, log=False, width=1.0,
@@ -316,7 +336,7 @@ def figure_5(checks_flip):
     compose([row, [cap]], "fig05_line_glyphs.png")
 
 
-def figure_6(rows):
+def figure_6(rows, checked):
     cloud = poly("corner_cloud.vtp")
     b = data_bounds(image("fig06_levin_field.vti"))
     w, hgt = 300, 336
@@ -341,29 +361,35 @@ def figure_6(rows):
                  1.2)
         points(cloud, v, BLACK, 3)
         grid[2].append(snap(v, "fig06_%s_fields" % key))
-        # Row 3: where 2000 uniform random starts end.
+        # Row 3: where 2000 uniform random starts end, over the mesher's polyline.
         v = panel_view(w, hgt, b)
         sp = poly("fig06_%s_surface_points.vtp" % key)
         points(cloud, v, LIGHT, 6, z=0.0)
+        mesh_polyline("fig06_%s_mesh.vtp" % key, v)
         points(subset(sp, "Outcome", "POINTS", 0, 0), v, BLACK, 3)
         points(subset(sp, "Outcome", "POINTS", 1, 1), v, ORANGE, 4)
         points(subset(sp, "Outcome", "POINTS", 2, 2), v, RED, 4)
-        title(v, "on curve %s, spurious %s" % (pct(r), r["spurious"]), 13, "Lower Center")
+        title(v, "on curve %s, spurious %s\nmesh %s" % (pct(r), r["spurious"],
+                                                        mesh_agreement(checked["corner.%s_mesh_agrees" % key])),
+              13, "Lower Center")
         grid[3].append(snap(v, "fig06_%s_points" % key))
         # Row 4: the same end points around the apex.
         v = panel_view(w, int(w * (zoom[3] - zoom[2]) / (zoom[1] - zoom[0])), zoom)
         points(cloud, v, LIGHT, 7, z=0.0)
+        mesh_polyline("fig06_%s_mesh.vtp" % key, v)
         points(subset(sp, "Outcome", "POINTS", 0, 0), v, BLACK, 4)
         points(subset(sp, "Outcome", "POINTS", 1, 1), v, ORANGE, 5)
         points(subset(sp, "Outcome", "POINTS", 2, 2), v, RED, 5)
         grid[4].append(snap(v, "fig06_%s_apex" % key))
-    cap = caption_panel(4 * w, 66,
+    cap = caption_panel(4 * w, 84,
                         "Figure 6: a 45-degree corner with open arms (h = 5). Row 1: energy plots (blue) and "
                         "best-fitting lines (red). Row 2: streamlines of n (blue-grey) and\niso-contours of "
                         "e(x, n(x)) (lighter = lower). Row 3: end points of 2000 uniform random starts: black within "
                         "0.5 h of the corner, orange off it but\nwithin 2 h of the cloud, red spurious (farther than "
                         "2 h from every input point); non-converged starts not drawn. Row 4: row 3 around the apex "
-                        "(+-4 h).", 12)
+                        "(+-4 h).\nRows 3 and 4, magenta: the polyline of vtkPointSetSurfaceMesher, checked: every "
+                        "black end point within 0.5 h of it, and every piece of it with an end point within 0.5 h.",
+                        12)
     compose(grid + [[cap]], "fig06_corner.png")
 
 
@@ -389,7 +415,7 @@ def figure_7():
     compose([[top[0]], [top[1]], [bottom[0]], [bottom[1]]], "fig07_delta.png")
 
 
-def figures_9_10(rows):
+def figures_9_10(rows, checked):
     cloud = poly("noisy_curve_cloud.vtp")
     for stem, key, fig, name in (("fig09_levin", "levin", "Figure 9", "Levin's MLS"),
                                  ("fig10_integral", "integral", "Figure 10", "integral variant e_I")):
@@ -415,6 +441,7 @@ def figures_9_10(rows):
         panels.append([snap(v, stem + "_b")])
         v = panel_view(w, hgt, b)
         lines(poly(stem + "_streamlines.vtp"), v, LIGHT, 1.0)
+        mesh_polyline(stem + "_mesh.vtp", v)
         points(cloud, v, GREY, 2)
         maxima = poly(stem + "_maxima.vtp")
         minima = poly(stem + "_minima.vtp")
@@ -423,10 +450,13 @@ def figures_9_10(rows):
         points(poly(stem + "_singular.vtp"), v, YELLOW, 8, True)
         n_min = count_points(minima)
         n_max = count_points(maxima)
-        panels.append([caption_panel(w, 48, "%s (c): streamlines and the surface points reached from 2000 random "
+        panels.append([caption_panel(w, 66, "%s (c): streamlines and the surface points reached from 2000 random "
                                      "starts: %d minima (blue), %s;\nyellow: near-singular n (local minima of "
-                                     "its stability below 0.05)"
-                                     % (fig, n_min, ("%d maxima (green)" % n_max) if n_max else "no maxima found"),
+                                     "its stability below 0.05); magenta: vtkPointSetSurfaceMesher's polyline,\n"
+                                     "checked: every end point on the curve within 0.5 h of it, every piece "
+                                     "with one within 0.5 h: %s"
+                                     % (fig, n_min, ("%d maxima (green)" % n_max) if n_max else "no maxima found",
+                                        mesh_agreement(checked["noisy10.%s_mesh_agrees" % key])),
                                      14,
                                      "Upper Center")])
         panels.append([snap(v, stem + "_c")])
@@ -581,12 +611,13 @@ def figure_8():
 
 def main():
     rows = table()
+    checked = checks()
     flip = rows[("line", "levin")]["flip_height_over_h"]
     figures_1_2(rows)
     figure_5(flip)
-    figure_6(rows)
+    figure_6(rows, checked)
     figure_7()
-    figures_9_10(rows)
+    figures_9_10(rows, checked)
     figure_3()
     figure_4()
     figure_8()
