@@ -47,6 +47,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <sys/resource.h>
 #include <unistd.h>
 #include <vector>
 
@@ -100,7 +101,7 @@ void AddCommonOptions(OptionTable& t, Run& run)
   t.Value("compression", "NAME", "lz4 | zlib | none, for .vtp .vtu .vti output (default lz4)", [&](const std::string& v) {
     run.compression = static_cast<pss_cli::Compression>(pss_cli::ToChoice("compression", v, { "lz4", "zlib", "none" }));
   });
-  t.Switch("verbose", "print the wall time of each stage (read, index, compute, write) and a summary",
+  t.Switch("verbose", "print the wall time of each stage (read, index, compute, write), the peak memory and a summary",
     [&]() { run.verbose = true; });
   t.Switch("progress", "always draw the progress bar on stderr (default: only on a terminal)", [&]() { run.progress = true; });
   t.Switch("no-progress", "never draw the progress bar", [&]() { run.progress = false; });
@@ -254,6 +255,12 @@ void Write(Run& run, vtkDataSet* data, const std::string& path)
     pss_cli::WriteDataSet(data, path, run.compression);
     return 0;
   });
+  // The whole process's peak resident memory, the figure that decides how large a cloud fits.
+  rusage usage{};
+  if (run.verbose && getrusage(RUSAGE_SELF, &usage) == 0)
+  {
+    std::fprintf(stderr, "pss: peak memory %.1f MiB\n", static_cast<double>(usage.ru_maxrss) / 1024.0);
+  }
 }
 
 // Counts of an integer point array's values, printed by --verbose (StopReason, DomainLabel).

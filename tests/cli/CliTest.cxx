@@ -20,6 +20,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -131,6 +133,13 @@ TEST(Cli, GenerateProjectRoundTrip)
   {
     EXPECT_NE(r.output.find(std::string("pss: ") + stage), std::string::npos) << "--verbose lacks the " << stage << " stage";
   }
+  // And the process's peak memory: at least what the program and VTK's libraries take, and far
+  // below the machine's memory for a 2000-point circle.
+  const std::size_t peak = r.output.find("pss: peak memory ");
+  ASSERT_NE(peak, std::string::npos) << r.output;
+  const double mib = std::atof(r.output.c_str() + peak + std::strlen("pss: peak memory "));
+  EXPECT_GT(mib, 5.0) << r.output;
+  EXPECT_LT(mib, 2048.0) << r.output;
   std::ifstream in(out);
   std::string header;
   std::getline(in, header);
