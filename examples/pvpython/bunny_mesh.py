@@ -38,36 +38,27 @@ Options:
   --h H           Gaussian scale h in the cloud's units (default: automatic, from the spacing;
                   0.72 mm on the merged bunny scans)
   --cell C        the mesher's cell size, in h (default: the filter's, 1)
-  --band B        how far from the cloud the mesher looks, in h (default: the filter's, 2)
+  --band B        how far from the cloud the mesher looks, in h (default: the filter's, 1)
 """
 import argparse
-import glob
 import os
 import sys
 import time
 
 import paraview.simple as pvs
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pss_example import TREE, find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
 from paraview import servermanager
 
 VARIANTS = {"levin": "Levin MLS", "normalized": "Normalized MLS", "com": "Center of Mass",
             "integral": "Integral Energy", "delta": "Delta Energy"}
-HERE = os.path.dirname(os.path.abspath(__file__))
-TREE = os.path.normpath(os.path.join(HERE, "..", ".."))
 DEFAULT_CLOUD = os.path.join("..", "shared", "data", "stanford-bunny", "bunny_scans_merged.ply")
 CLOUD_COLOUR = [0.6, 0.1, 0.1]
 # The cloud's depth shading, near to far: light red to the plain cloud's dark red to near black
 # (no colour of Viridis, the mesh's map, is within reach of these).
 DEPTH_COLOURS = [0.0, 1.0, 0.55, 0.5, 0.5, 0.6, 0.1, 0.1, 1.0, 0.25, 0.03, 0.03]
 
-
-def parse_size(text):
-    try:
-        w, h = (int(v) for v in text.lower().split("x"))
-    except ValueError:
-        raise argparse.ArgumentTypeError("expected WxH, e.g. 1600x800, got %r" % text)
-    if w < 16 or h < 16:
-        raise argparse.ArgumentTypeError("image too small: %r" % text)
-    return [w, h]
 
 
 def positive_int(text):
@@ -83,27 +74,6 @@ def positive_float(text):
         raise argparse.ArgumentTypeError("expected a positive number, got %r" % text)
     return value
 
-
-def find_plugin(given):
-    """Path of PointSetSurfaces.so, or None when PV_PLUGIN_PATH already loaded it."""
-    if given:
-        if os.path.isdir(given):
-            given = os.path.join(given, "PointSetSurfaces.so")
-        if not os.path.isfile(given):
-            sys.exit("error: no plugin at %s" % given)
-        return given
-    if hasattr(pvs, "PointSetSurfaceMesh"):
-        return None
-    candidates = [os.path.join(d, "PointSetSurfaces.so") for d in os.environ.get("PV_PLUGIN_PATH", "").split(os.pathsep) if d]
-    # Then the build tree of this checkout: $PSS_BUILD_DIR or build/ (scripts/build.sh), else the
-    # newest build*/ folder.
-    build_dirs = [os.environ.get("PSS_BUILD_DIR", ""), os.path.join(TREE, "build")]
-    build_dirs += sorted(glob.glob(os.path.join(TREE, "build*")), key=os.path.getmtime, reverse=True)
-    candidates += [os.path.join(d, "lib", "paraview-plugins", "PointSetSurfaces", "PointSetSurfaces.so") for d in build_dirs if d]
-    for c in candidates:
-        if os.path.isfile(c):
-            return os.path.abspath(c)
-    sys.exit("error: PointSetSurfaces.so not found: give --plugin PATH or set PV_PLUGIN_PATH")
 
 
 def read_cloud(filename):
@@ -140,7 +110,7 @@ def main():
     parser.add_argument("--band", type=positive_float)
     args = parser.parse_args()
 
-    plugin = find_plugin(args.plugin)
+    plugin = find_plugin(args.plugin, "PointSetSurfaceMesh")
     if plugin:
         pvs.LoadPlugin(plugin, remote=False, ns=globals())
     P = {name: getattr(pvs, name, None) or globals()[name]
@@ -212,14 +182,7 @@ def main():
         % (VARIANTS[args.variant], "{:,}".format(triangles), pieces, "" if pieces == 1 else "s", "{:,}".format(boundary)),
     ]
     for cell, title_text in zip((1, 2), titles):
-        view = pvs.CreateView("RenderView")
-        pvs.AssignViewToLayout(view=view, layout=layout, hint=cell)
-        view.Background = [1, 1, 1]
-        try:
-            view.UseColorPaletteForBackground = 0
-        except AttributeError:
-            pass
-        view.OrientationAxesVisibility = 0
+        view = white_view(layout, cell)
         if cell == 1:
             d = pvs.Show(depth, view)
             d.SetRepresentationType("Points")

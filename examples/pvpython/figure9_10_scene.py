@@ -35,11 +35,13 @@ Options:
                   extrema here, only much more slowly)
 """
 import argparse
-import glob
 import os
 import sys
 
 import paraview.simple as pvs
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pss_example import find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
 
 VARIANTS = {"levin": "Levin MLS", "normalized": "Normalized MLS", "com": "Center of Mass",
             "integral": "Integral Energy", "delta": "Delta Energy"}
@@ -49,38 +51,6 @@ BLUE = [0.1, 0.25, 1.0]
 GREEN = [0.0, 0.75, 0.1]
 
 
-def parse_size(text):
-    try:
-        w, h = (int(v) for v in text.lower().split("x"))
-    except ValueError:
-        raise argparse.ArgumentTypeError("expected WxH, e.g. 1200x800, got %r" % text)
-    if w < 16 or h < 16:
-        raise argparse.ArgumentTypeError("image too small: %r" % text)
-    return [w, h]
-
-
-def find_plugin(given):
-    """Path of PointSetSurfaces.so, or None when PV_PLUGIN_PATH already loaded it."""
-    if given:
-        if os.path.isdir(given):
-            given = os.path.join(given, "PointSetSurfaces.so")
-        if not os.path.isfile(given):
-            sys.exit("error: no plugin at %s" % given)
-        return given
-    if hasattr(pvs, "PointSetSurfaceProjection"):
-        return None
-    here = os.path.dirname(os.path.abspath(__file__))
-    candidates = [os.path.join(d, "PointSetSurfaces.so") for d in os.environ.get("PV_PLUGIN_PATH", "").split(os.pathsep) if d]
-    # Then the build tree of this checkout: $PSS_BUILD_DIR or build/ (scripts/build.sh), else the
-    # newest build*/ folder.
-    tree = os.path.join(here, "..", "..")
-    build_dirs = [os.environ.get("PSS_BUILD_DIR", ""), os.path.join(tree, "build")]
-    build_dirs += sorted(glob.glob(os.path.join(tree, "build*")), key=os.path.getmtime, reverse=True)
-    candidates += [os.path.join(d, "lib", "paraview-plugins", "PointSetSurfaces", "PointSetSurfaces.so") for d in build_dirs if d]
-    for c in candidates:
-        if os.path.isfile(c):
-            return os.path.abspath(c)
-    sys.exit("error: PointSetSurfaces.so not found: give --plugin PATH or set PV_PLUGIN_PATH")
 
 
 def main():
@@ -149,14 +119,8 @@ def main():
         inside.UpdatePipeline()
         extrema[kind] = inside
 
-    view = pvs.CreateView("RenderView")
+    view = white_view()
     view.ViewSize = args.size
-    view.Background = [1, 1, 1]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    view.OrientationAxesVisibility = 0
     view.CameraParallelProjection = 1
 
     d = pvs.Show(stream, view)

@@ -32,11 +32,13 @@ Options:
                      filter's default, 1000, draws the same picture, only slower)
 """
 import argparse
-import glob
 import os
 import sys
 
 import paraview.simple as pvs
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pss_example import find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
 from paraview import servermanager
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
@@ -44,15 +46,6 @@ VARIANTS = {"levin": "Levin MLS", "normalized": "Normalized MLS", "com": "Center
             "integral": "Integral Energy", "delta": "Delta Energy"}
 RED = [0.85, 0.1, 0.1]
 
-
-def parse_size(text):
-    try:
-        w, h = (int(v) for v in text.lower().split("x"))
-    except ValueError:
-        raise argparse.ArgumentTypeError("expected WxH, e.g. 1200x800, got %r" % text)
-    if w < 32 or h < 16:
-        raise argparse.ArgumentTypeError("image too small: %r" % text)
-    return [w, h]
 
 
 def parse_variants(text):
@@ -62,33 +55,12 @@ def parse_variants(text):
     return names
 
 
-def find_plugin(given):
-    """Path of PointSetSurfaces.so, or None when PV_PLUGIN_PATH already loaded it."""
-    if given:
-        if os.path.isdir(given):
-            given = os.path.join(given, "PointSetSurfaces.so")
-        if not os.path.isfile(given):
-            sys.exit("error: no plugin at %s" % given)
-        return given
-    if hasattr(pvs, "PointSetSurfaceProjection"):
-        return None
-    here = os.path.dirname(os.path.abspath(__file__))
-    candidates = [os.path.join(d, "PointSetSurfaces.so") for d in os.environ.get("PV_PLUGIN_PATH", "").split(os.pathsep) if d]
-    tree = os.path.join(here, "..", "..")
-    build_dirs = [os.environ.get("PSS_BUILD_DIR", ""), os.path.join(tree, "build")]
-    build_dirs += sorted(glob.glob(os.path.join(tree, "build*")), key=os.path.getmtime, reverse=True)
-    candidates += [os.path.join(d, "lib", "paraview-plugins", "PointSetSurfaces", "PointSetSurfaces.so") for d in build_dirs if d]
-    for c in candidates:
-        if os.path.isfile(c):
-            return os.path.abspath(c)
-    sys.exit("error: PointSetSurfaces.so not found: give --plugin PATH or set PV_PLUGIN_PATH")
-
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--plugin")
     parser.add_argument("--output", default="noisy_curve_two_variants.png")
-    parser.add_argument("--size", type=parse_size, default=[1600, 600])
+    parser.add_argument("--size", type=lambda text: parse_size(text, min_width=32), default=[1600, 600])
     parser.add_argument("--variants", type=parse_variants, default=["levin", "com"])
     parser.add_argument("--h", type=float, default=5.0)
     parser.add_argument("--count", type=int, default=600)
@@ -120,14 +92,7 @@ def main():
                                                     ScaleFactor=args.h, MaxTravel=args.max_travel,
                                                     GenerateProjectionLines=1)
         projection.UpdatePipeline()
-        view = pvs.CreateView("RenderView")
-        pvs.AssignViewToLayout(view=view, layout=layout, hint=cell)
-        view.Background = [1, 1, 1]
-        try:
-            view.UseColorPaletteForBackground = 0
-        except AttributeError:
-            pass
-        view.OrientationAxesVisibility = 0
+        view = white_view(layout, cell)
         view.CameraParallelProjection = 1
 
         lines = pvs.Show(pvs.OutputPort(projection, 1), view)
