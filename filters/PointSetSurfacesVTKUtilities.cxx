@@ -8,6 +8,7 @@
 #include "vtkFieldData.h"
 #include "vtkIntArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkPointSetSurface.h"
 
 #include <algorithm>
@@ -82,6 +83,18 @@ bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPoi
   if (!surface)
   {
     vtkErrorWithObjectMacro(algorithm, << "no vtkPointSetSurface is set");
+    return false;
+  }
+  // Until the filters run distributed, each rank of an MPI run would take its own piece as the
+  // whole cloud (its own h, centroid and neighbours) and silently differ from a one-process run
+  // near every piece's border: refuse instead.
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    vtkErrorWithObjectMacro(algorithm, << "runs in one process only, and this run has "
+                                       << controller->GetNumberOfProcesses()
+                                       << " (MPI): each rank would see only its piece of the cloud. Run it in one "
+                                          "process (pvpython, or pvbatch without mpiexec), or on the merged cloud");
     return false;
   }
   if (!surface->Prepare(cloud))

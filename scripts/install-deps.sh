@@ -7,14 +7,15 @@ set -euo pipefail
 # conflicts with python3-paraview); its CMake config needs python3-paraview and qtbase5-dev, and
 # the VTK components we use need libdouble-conversion-dev, which paraview-dev does not pull in.
 # Building the plugin also needs MPI (ParaView's VTK::mpi links MPI::MPI_C), Qt5Help and Qt's
-# xmlpatterns (the server-manager XML is turned into help pages). The fuzz targets (tests/fuzz)
+# xmlpatterns (the server-manager XML is turned into help pages); mpiexec runs the two-rank pvbatch
+# test. The fuzz targets (tests/fuzz)
 # need clang and its compiler-rt (libFuzzer and the sanitizer runtimes).
 packages=(
   build-essential cmake pkg-config
   clang libclang-rt-14-dev
   libeigen3-dev libnanoflann-dev libgtest-dev
   paraview-dev python3-paraview qtbase5-dev libdouble-conversion-dev
-  mpi-default-dev qttools5-dev qtxmlpatterns5-dev-tools
+  mpi-default-dev mpi-default-bin qttools5-dev qtxmlpatterns5-dev-tools
   xvfb xauth
 )
 

@@ -1,0 +1,45 @@
+"""Run by `mpiexec -np 2 pvbatch --symmetric` (ctest ParaView.Mpi.RefusedInsteadOfWrong): until the
+filters run distributed, a run with more than one process must refuse every filter that defines
+a surface (an error and an empty output) instead of computing on each rank's piece alone, which
+differs from the one-process answer near every piece's border without saying so.
+
+Prints "ok" lines and ends normally on success; exits 1 with the reason otherwise.
+usage: pvbatch --symmetric test_mpi_refused.py --plugin PointSetSurfaces.so
+"""
+import argparse
+import sys
+
+import paraview.simple as pvs
+from paraview import servermanager
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--plugin", required=True)
+args = parser.parse_args()
+pvs.LoadPlugin(args.plugin, remote=False, ns=globals())
+
+pm = servermanager.vtkProcessModule.GetProcessModule()
+ranks = pm.GetNumberOfLocalPartitions()
+rank = pm.GetPartitionId()
+if ranks < 2:
+    sys.exit("expected an MPI run of at least 2 processes, got %d" % ranks)
+
+cloud = PointSetSurfaceCloudSource(Scene="Noisy Curve", NumberOfPoints=400, Noise=0.5)
+cloud.UpdatePipeline()
+# The source makes the whole cloud on rank 0 (its piece 0) and nothing on the others: rank 0 then
+# holds a complete cloud, and a filter there could compute the right answer; it must refuse anyway.
+if rank == 0 and cloud.GetDataInformation().GetNumberOfPoints() == 0:
+    sys.exit("the cloud source gave no points on rank 0")
+refused = 0
+for name, proxy in (("projection", PointSetSurfaceProjection(Input=cloud)),
+                    ("classifier", PointSetSurfaceDomainClassifier(Input=cloud)),
+                    ("mesh", PointSetSurfaceMesh(Input=cloud))):
+    proxy.UpdatePipeline()
+    points = proxy.GetDataInformation().GetNumberOfPoints()
+    if points != 0:
+        sys.exit("%s: %d output points in a %d-process run: it should have refused" % (name, points, ranks))
+    refused += 1
+    if rank == 0:
+        print("ok   %-12s refused in a %d-process run" % (name, ranks), flush=True)
+if refused != 3:
+    sys.exit("only %d of 3 filters checked" % refused)
+# Success ends the script normally: pvbatch then finalizes MPI on every rank (sys.exit would not).
