@@ -592,29 +592,59 @@ std::vector<std::array<std::uint32_t, K>> keepCells(const std::vector<std::array
   return out;
 }
 
+double cellMeasure(const std::array<std::uint32_t, 3>& t, const std::vector<Vec3>& points)
+{
+  return 0.5 * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
+}
+
+double cellMeasure(const std::array<std::uint32_t, 2>& s, const std::vector<Vec3>& points)
+{
+  return (points[s[1]] - points[s[0]]).norm();
+}
+
+// The connected pieces of a mesh's cells (triangles or segments): which piece each vertex is in
+// (the root of its set), the measure (area or length) of each piece at its root, -1 where no piece
+// is rooted, and the total, summed in the cells' order.
+struct Pieces
+{
+  UnionFind sets;
+  std::vector<double> measure;
+  double total = 0.0;
+};
+
+template <std::size_t K>
+Pieces piecesOf(const std::vector<std::array<std::uint32_t, K>>& cells, const std::vector<Vec3>& points)
+{
+  Pieces p{ UnionFind(points.size()), std::vector<double>(points.size(), -1.0), 0.0 };
+  for (const auto& c : cells)
+  {
+    for (std::size_t k = 1; k < K; ++k)
+    {
+      p.sets.unite(c[0], c[k]);
+    }
+  }
+  for (const auto& c : cells)
+  {
+    const double m = cellMeasure(c, points);
+    double& root = p.measure[p.sets.find(c[0])];
+    root = std::max(root, 0.0) + m;
+    p.total += m;
+  }
+  return p;
+}
+
 // Per vertex: whether the connected piece of @p triangles it belongs to has an area of at least
 // @p minArea; counts the smaller pieces in @p smallPieces.
 std::vector<char> largePieces(const std::vector<std::array<std::uint32_t, 3>>& triangles,
   const std::vector<Vec3>& points, double minArea, std::size_t& smallPieces)
 {
-  UnionFind pieces(points.size());
-  for (const auto& t : triangles)
-  {
-    pieces.unite(t[0], t[1]);
-    pieces.unite(t[0], t[2]);
-  }
-  std::vector<double> area(points.size(), -1.0); // at each piece's root; -1 where none is rooted
-  for (const auto& t : triangles)
-  {
-    double& a = area[pieces.find(t[0])];
-    a = std::max(a, 0.0) + 0.5 * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
-  }
-  smallPieces = static_cast<std::size_t>(
-    std::count_if(area.begin(), area.end(), [minArea](double a) { return a >= 0.0 && a < minArea; }));
+  Pieces pieces = piecesOf(triangles, points);
+  smallPieces = static_cast<std::size_t>(std::count_if(pieces.measure.begin(), pieces.measure.end(),
+    [minArea](double a) { return a >= 0.0 && a < minArea; }));
   std::vector<char> large(points.size());
   for (std::size_t v = 0; v < points.size(); ++v)
   {
-    large[v] = area[pieces.find(v)] >= minArea ? 1 : 0;
+    large[v] = pieces.measure[pieces.sets.find(v)] >= minArea ? 1 : 0;
   }
   return large;
 }
@@ -684,28 +714,18 @@ void forEachEdge(const EdgeList& e, Visit&& visit)
 void countTopology(SurfaceMesh& mesh)
 {
   MeshStatistics& st = mesh.statistics;
-  st.components = st.boundaryEdges = st.nonManifoldEdges = 0;
-  st.measure = st.largestComponentMeasure = 0.0;
+  st.boundaryEdges = st.nonManifoldEdges = 0;
   const std::size_t nv = mesh.points.size();
   const bool surface = mesh.dimension == 3;
   const std::size_t cells = surface ? mesh.triangles.size() : mesh.segments.size();
-  UnionFind pieces(nv);
-  std::vector<double> cellMeasure(cells);
-  for (std::size_t c = 0; c < cells; ++c)
+  const Pieces pieces = surface ? piecesOf(mesh.triangles, mesh.points) : piecesOf(mesh.segments, mesh.points);
+  st.components = 0;
+  st.measure = pieces.total;
+  st.largestComponentMeasure = 0.0;
+  for (const double m : pieces.measure)
   {
-    if (surface)
-    {
-      const auto& t = mesh.triangles[c];
-      pieces.unite(t[0], t[1]);
-      pieces.unite(t[0], t[2]);
-      cellMeasure[c] = 0.5 * (mesh.points[t[1]] - mesh.points[t[0]]).cross(mesh.points[t[2]] - mesh.points[t[0]]).norm();
-    }
-    else
-    {
-      const auto& seg = mesh.segments[c];
-      pieces.unite(seg[0], seg[1]);
-      cellMeasure[c] = (mesh.points[seg[1]] - mesh.points[seg[0]]).norm();
-    }
+    st.components += m >= 0.0 ? 1 : 0;
+    st.largestComponentMeasure = std::max(st.largestComponentMeasure, m);
   }
   std::size_t distinct = 0;
   if (surface)
@@ -734,18 +754,6 @@ void countTopology(SurfaceMesh& mesh)
   st.eulerCharacteristic = surface
     ? static_cast<long long>(nv) - static_cast<long long>(distinct) + static_cast<long long>(cells)
     : static_cast<long long>(nv) - static_cast<long long>(cells);
-  std::vector<double> measureOf(nv, -1.0); // per piece, at its root; -1 where no piece is rooted
-  for (std::size_t c = 0; c < cells; ++c)
-  {
-    double& m = measureOf[pieces.find(surface ? mesh.triangles[c][0] : mesh.segments[c][0])];
-    st.components += m < 0.0 ? 1 : 0;
-    m = std::max(m, 0.0) + cellMeasure[c];
-    st.measure += cellMeasure[c];
-  }
-  for (double m : measureOf)
-  {
-    st.largestComponentMeasure = std::max(st.largestComponentMeasure, m);
-  }
 }
 
 SurfaceMesh SurfaceMesher::finish()
@@ -777,7 +785,6 @@ SurfaceMesh SurfaceMesher::finish()
   // A cell whose own normal (from its final vertices) is more than maxFoldAngle off its vertices'
   // normals is folded over, or bridges two sheets whose crossings projected apart: dropped.
   // Degenerate cells (a tiny area or length) have no normal to judge and are kept.
-  auto unfolded = [this](const Vec3& face, const Vec3& vertexNormals) { return isUnfolded(face, vertexNormals); };
   std::size_t folded = 0;
   auto keepTriangle = [&](const std::array<std::uint32_t, 3>& t) {
     if (!keep[t[0]] || !keep[t[1]] || !keep[t[2]])
@@ -785,7 +792,7 @@ SurfaceMesh SurfaceMesher::finish()
       return false;
     }
     const Vec3 face = (point[t[1]] - point[t[0]]).cross(point[t[2]] - point[t[0]]);
-    const bool ok = unfolded(face, normal[t[0]] + normal[t[1]] + normal[t[2]]);
+    const bool ok = isUnfolded(face, normal[t[0]] + normal[t[1]] + normal[t[2]]);
     folded += ok ? 0 : 1;
     return ok;
   };
@@ -795,7 +802,7 @@ SurfaceMesh SurfaceMesher::finish()
       return false;
     }
     const Vec3 d = point[s[1]] - point[s[0]];
-    const bool ok = unfolded(Vec3(-d.y(), d.x(), 0.0), normal[s[0]] + normal[s[1]]);
+    const bool ok = isUnfolded(Vec3(-d.y(), d.x(), 0.0), normal[s[0]] + normal[s[1]]);
     folded += ok ? 0 : 1;
     return ok;
   };
