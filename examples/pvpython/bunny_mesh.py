@@ -48,7 +48,7 @@ import time
 import paraview.simple as pvs
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pss_example import TREE, find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
+from pss_example import TREE, black_scalar_bar, find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
 from paraview import servermanager
 
 VARIANTS = {"levin": "Levin MLS", "normalized": "Normalized MLS", "com": "Center of Mass",
@@ -205,15 +205,10 @@ def main():
             d.LookupTable = lut
             d.Specular = 0.3
             d.SetScalarBarVisibility(view, True)
-            bar = pvs.GetScalarBar(lut, view)
-            bar.Title = "Stability"
-            bar.ComponentTitle = ""
-            bar.TitleColor = bar.LabelColor = [0, 0, 0]
+            bar = black_scalar_bar(lut, view, "Stability", [0.86, 0.1])
             bar.TitleFontSize = bar.LabelFontSize = 13
             bar.AutomaticLabelFormat = 0
             bar.LabelFormat = bar.RangeLabelFormat = "%.2f"
-            bar.WindowLocation = "Any Location"
-            bar.Position = [0.86, 0.1]
             bar.ScalarBarLength = 0.5
         t = pvs.Show(pvs.Text(Text=title_text), view)
         t.Color = [0, 0, 0]

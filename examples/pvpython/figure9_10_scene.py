@@ -41,7 +41,7 @@ import sys
 import paraview.simple as pvs
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pss_example import find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
+from pss_example import black_scalar_bar, find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
 
 VARIANTS = {"levin": "Levin MLS", "normalized": "Normalized MLS", "com": "Center of Mass",
             "integral": "Integral Energy", "delta": "Delta Energy"}
@@ -141,12 +141,7 @@ def main():
         lut.UseLogScale = 1
     d.LineWidth = 2.0
     d.SetScalarBarVisibility(view, True)
-    bar = pvs.GetScalarBar(lut, view)
-    bar.Title = "e(x, n(x))"
-    bar.ComponentTitle = ""
-    bar.TitleColor = bar.LabelColor = [0, 0, 0]
-    bar.WindowLocation = "Any Location"
-    bar.Position = [0.84, 0.1]
+    bar = black_scalar_bar(lut, view, "e(x, n(x))", [0.84, 0.1])
     bar.ScalarBarLength = 0.5
 
     for kind, colour in (("minima", BLUE), ("maxima", GREEN)):

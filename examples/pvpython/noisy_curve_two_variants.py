@@ -38,7 +38,7 @@ import sys
 import paraview.simple as pvs
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pss_example import find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
+from pss_example import black_scalar_bar, find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
 from paraview import servermanager
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
@@ -129,13 +129,9 @@ def main():
         view.CameraParallelScale = 1.1 * max((y1 - y0) / 2, (x1 - x0) / 2 / aspect)
 
     lines.SetScalarBarVisibility(view, True)
-    bar = pvs.GetScalarBar(lut, view)
-    bar.Title = "projection line"
-    bar.ComponentTitle = ""
-    bar.TitleColor = bar.LabelColor = [0, 0, 0]
+    # Lower left of the right view: the curve is elsewhere.
+    bar = black_scalar_bar(lut, view, "projection line", [0.03, 0.04])
     bar.TitleFontSize = bar.LabelFontSize = 12
-    bar.WindowLocation = "Any Location"
-    bar.Position = [0.03, 0.04]  # lower left of the right view: the curve is elsewhere
     bar.TextPosition = "Ticks left/bottom, annotations right/top"
     bar.ScalarBarLength = 0.3
 

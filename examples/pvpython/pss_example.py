@@ -61,3 +61,15 @@ def white_view(layout=None, cell=0):
         pass
     view.OrientationAxesVisibility = 0
     return view
+
+
+def black_scalar_bar(lut, view, title, position):
+    """@p lut's scalar bar in @p view: black text on the white view, titled @p title, placed at
+    @p position (view fractions); returned for the caller's own touches."""
+    bar = pvs.GetScalarBar(lut, view)
+    bar.Title = title
+    bar.ComponentTitle = ""
+    bar.TitleColor = bar.LabelColor = [0, 0, 0]
+    bar.WindowLocation = "Any Location"
+    bar.Position = position
+    return bar
