@@ -13,7 +13,6 @@
  * lists its flags with their defaults. Exit status: 0 success, 1 failure (message on stderr),
  * 2 bad command line.
  */
-#include "PointSetSurfacesSMP.h"
 #include "PssIO.h"
 #include "PssOptions.h"
 
@@ -44,6 +43,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -195,12 +195,14 @@ void Execute(Run& run, vtkAlgorithm* algorithm)
   }
 }
 
-void RequireOutput(const Run& run)
+// What every subcommand checks and sets once its flags are parsed.
+void StartRun(const Run& run)
 {
   if (run.output.empty())
   {
     throw UsageError{ "--output FILE is required" };
   }
+  vtkSMPTools::Initialize(run.threads);
 }
 
 // Parses, or prints help and returns false.
@@ -218,6 +220,23 @@ bool ParseCommand(const char* name, const char* usage, const char* summary, Opti
   }
   positional = table.Parse(args);
   return true;
+}
+
+// The start of the subcommands that read one cloud: returns its path, or nothing after --help.
+std::optional<std::string> ParseCloudCommand(const char* name, const char* usage, const char* summary,
+  OptionTable& table, const std::vector<std::string>& args, const Run& run)
+{
+  std::vector<std::string> positional;
+  if (!ParseCommand(name, usage, summary, table, args, positional))
+  {
+    return std::nullopt;
+  }
+  if (positional.size() != 1)
+  {
+    throw UsageError{ std::string(name) + " needs exactly one input cloud" };
+  }
+  StartRun(run);
+  return positional[0];
 }
 
 vtkSmartPointer<vtkPointSet> ReadPointSet(Run& run, const std::string& path, const char* what)
@@ -339,9 +358,7 @@ int Generate(const std::vector<std::string>& args)
   {
     source->SetDimension(3);
   }
-  RequireOutput(run);
-  pss_vtk::EnsureParallelBackend();
-  vtkSMPTools::Initialize(run.threads);
+  StartRun(run);
   run.Stage("compute", [&]() {
     Execute(run, source);
     return 0;
@@ -387,20 +404,12 @@ int ProjectOrClassify(const std::vector<std::string>& args, bool classify)
     ? "Projects every start point and labels it: 0 InDomain, 1 Spurious, 2 Undefined, 3 NotConverged."
     : "Moves points onto the point-set surface of CLOUD (arrays Normal, Energy, Displacement, Iterations,\n"
       "Converged, Stability, ExtremumType, StopReason).";
-  std::vector<std::string> positional;
-  if (!ParseCommand(name, "CLOUD -o FILE [options]", summary, t, args, positional))
+  const std::optional<std::string> cloudPath = ParseCloudCommand(name, "CLOUD -o FILE [options]", summary, t, args, run);
+  if (!cloudPath)
   {
     return 0;
   }
-  if (positional.size() != 1)
-  {
-    throw UsageError{ std::string(name) + " needs exactly one input cloud" };
-  }
-  RequireOutput(run);
-  pss_vtk::EnsureParallelBackend();
-  vtkSMPTools::Initialize(run.threads);
-
-  vtkSmartPointer<vtkPointSet> cloud = PrepareCloud(run, positional[0], filter->GetSurface());
+  vtkSmartPointer<vtkPointSet> cloud = PrepareCloud(run, *cloudPath, filter->GetSurface());
   filter->SetInputData(0, cloud);
   if (!startPath.empty())
   {
@@ -441,22 +450,14 @@ int Sample(const std::vector<std::string>& args)
     [&](const std::string& v) { sampler->SetSamplingMargin(pss_cli::ToDouble("margin", v)); });
   t.Switch("domain-labels", "also compute DomainLabel at every sample (projects every sample: slow)",
     [&]() { sampler->ComputeDomainLabelsOn(); });
-  std::vector<std::string> positional;
-  if (!ParseCommand("sample", "CLOUD -o FILE [--probe FILE | --grid NX,NY,NZ] [options]",
-        "Samples Normal (oriented for stream tracers), Energy, Delta, ImplicitG, Stability, ExtremumType.", t, args,
-        positional))
+  const std::optional<std::string> cloudPath = ParseCloudCommand("sample",
+    "CLOUD -o FILE [--probe FILE | --grid NX,NY,NZ] [options]",
+    "Samples Normal (oriented for stream tracers), Energy, Delta, ImplicitG, Stability, ExtremumType.", t, args, run);
+  if (!cloudPath)
   {
     return 0;
   }
-  if (positional.size() != 1)
-  {
-    throw UsageError{ "sample needs exactly one input cloud" };
-  }
-  RequireOutput(run);
-  pss_vtk::EnsureParallelBackend();
-  vtkSMPTools::Initialize(run.threads);
-
-  vtkSmartPointer<vtkPointSet> cloud = PrepareCloud(run, positional[0], sampler->GetSurface());
+  vtkSmartPointer<vtkPointSet> cloud = PrepareCloud(run, *cloudPath, sampler->GetSurface());
   sampler->SetSourceData(cloud);
   if (!probePath.empty())
   {
@@ -492,22 +493,13 @@ int Glyphs(const std::vector<std::string>& args)
     [&](const std::string& v) { glyphs->SetGlyphSize(pss_cli::ToDouble("glyph-size", v)); });
   t.Value("segment-length", "L", "half-length of the best-fit segments, in h (default 1)",
     [&](const std::string& v) { glyphs->SetSegmentLength(pss_cli::ToDouble("segment-length", v)); });
-  std::vector<std::string> positional;
-  if (!ParseCommand("glyphs", "CLOUD -o FILE [options]",
-        "Energy plots x + c e(x, a) a over directions a (Figures 4 and 5) and best-fitting segments.", t, args,
-        positional))
+  const std::optional<std::string> cloudPath = ParseCloudCommand("glyphs", "CLOUD -o FILE [options]",
+    "Energy plots x + c e(x, a) a over directions a (Figures 4 and 5) and best-fitting segments.", t, args, run);
+  if (!cloudPath)
   {
     return 0;
   }
-  if (positional.size() != 1)
-  {
-    throw UsageError{ "glyphs needs exactly one input cloud" };
-  }
-  RequireOutput(run);
-  pss_vtk::EnsureParallelBackend();
-  vtkSMPTools::Initialize(run.threads);
-
-  vtkSmartPointer<vtkPointSet> cloud = PrepareCloud(run, positional[0], glyphs->GetSurface());
+  vtkSmartPointer<vtkPointSet> cloud = PrepareCloud(run, *cloudPath, glyphs->GetSurface());
   glyphs->SetInputData(0, cloud);
   if (!samplesPath.empty())
   {
@@ -585,23 +577,15 @@ int Mesh(const std::vector<std::string>& args)
     [&](const std::string& v) { mesher->SetMaxHoleEdges(pss_cli::ToInt("max-hole-edges", v)); });
   t.Value("min-piece-area", "A", "3D: remove pieces smaller than A h^2 (default 0: keep all)",
     [&](const std::string& v) { mesher->SetMinPieceArea(pss_cli::ToDouble("min-piece-area", v)); });
-  std::vector<std::string> positional;
-  if (!ParseCommand("mesh", "CLOUD -o FILE [options]",
-        "Meshes the point-set surface of CLOUD where it is defined: triangles in 3D (polylines in 2D) with\n"
-        "Normals, Stability, Energy, DomainLabel and the classifier's evidence. .stl and .obj keep the geometry only.",
-        t, args, positional))
+  const std::optional<std::string> cloudPath = ParseCloudCommand("mesh", "CLOUD -o FILE [options]",
+    "Meshes the point-set surface of CLOUD where it is defined: triangles in 3D (polylines in 2D) with\n"
+    "Normals, Stability, Energy, DomainLabel and the classifier's evidence. .stl and .obj keep the geometry only.",
+    t, args, run);
+  if (!cloudPath)
   {
     return 0;
   }
-  if (positional.size() != 1)
-  {
-    throw UsageError{ "mesh needs exactly one input cloud" };
-  }
-  RequireOutput(run);
-  pss_vtk::EnsureParallelBackend();
-  vtkSMPTools::Initialize(run.threads);
-
-  vtkSmartPointer<vtkPointSet> cloud = PrepareCloud(run, positional[0], mesher->GetSurface());
+  vtkSmartPointer<vtkPointSet> cloud = PrepareCloud(run, *cloudPath, mesher->GetSurface());
   mesher->SetInputData(cloud);
   run.Stage("compute", [&]() {
     Execute(run, mesher);
@@ -643,6 +627,7 @@ int main(int argc, char** argv)
 {
   vtkNew<PlainOutputWindow> window;
   vtkOutputWindow::SetInstance(window);
+  vtkPointSetSurface::UseThreadedBackend();
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")
   {
     std::cout << MainHelp;

@@ -568,14 +568,10 @@ int main(int argc, char** argv)
   try
   {
     const Options opt = Parse(argc, argv);
+    // An application chooses the threading backend (the filters never change it).
+    vtkPointSetSurface::UseThreadedBackend();
     if (opt.threads > 0)
     {
-      // The filters switch ParaView's default Sequential backend to STDThread on first use; do
-      // it here so that the thread count applies to the backend that will run.
-      if (!std::getenv("VTK_SMP_BACKEND_IN_USE"))
-      {
-        vtkSMPTools::SetBackend("STDThread");
-      }
       vtkSMPTools::Initialize(opt.threads);
     }
     OutDir = fs::path(opt.out);

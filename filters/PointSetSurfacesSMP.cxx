@@ -6,29 +6,13 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstdlib>
-#include <cstring>
 
 namespace pss_vtk
 {
 
-void EnsureParallelBackend()
-{
-  static const bool done = []() {
-    const char* chosen = std::getenv("VTK_SMP_BACKEND_IN_USE");
-    if ((chosen == nullptr || *chosen == '\0') && std::strcmp(vtkSMPTools::GetBackend(), "Sequential") == 0)
-    {
-      vtkSMPTools::SetBackend("STDThread");
-    }
-    return true;
-  }();
-  (void)done;
-}
-
 bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType)>& body,
   double progressBegin, double progressEnd)
 {
-  EnsureParallelBackend();
   if (n <= 0)
   {
     return true;

@@ -3,9 +3,8 @@
  * @file PointSetSurfacesSMP.h
  * @brief Private helpers of the VTK module: a threaded loop with progress and abort.
  *
- * ParaView's VTK on Debian defaults vtkSMPTools to the Sequential backend although STDThread is
- * compiled in. Unless the user chose a backend through VTK_SMP_BACKEND_IN_USE, the first filter
- * run switches Sequential to STDThread, so every filter uses all cores by default.
+ * The loop runs on vtkSMPTools' backend as the application set it; the filters never change it
+ * (see vtkPointSetSurface::UseThreadedBackend).
  */
 #ifndef PointSetSurfacesSMP_h
 #define PointSetSurfacesSMP_h
@@ -18,9 +17,6 @@ class vtkAlgorithm;
 
 namespace pss_vtk
 {
-
-/// Switches vtkSMPTools from Sequential to STDThread unless VTK_SMP_BACKEND_IN_USE is set.
-void EnsureParallelBackend();
 
 /**
  * Calls @p body(i) for every i in [0, n) through vtkSMPTools, in chunks. The thread that owns the

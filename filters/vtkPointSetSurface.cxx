@@ -4,11 +4,14 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
+#include "vtkSMPTools.h"
 
 #include "pss/PointIndex.h"
 #include "pss/SurfaceDefinition.h"
 
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -17,6 +20,16 @@ vtkStandardNewMacro(vtkPointSetSurface);
 
 vtkPointSetSurface::vtkPointSetSurface() = default;
 vtkPointSetSurface::~vtkPointSetSurface() = default;
+
+const char* vtkPointSetSurface::UseThreadedBackend()
+{
+  const char* chosen = std::getenv("VTK_SMP_BACKEND_IN_USE");
+  if ((chosen == nullptr || *chosen == '\0') && std::strcmp(vtkSMPTools::GetBackend(), "Sequential") == 0)
+  {
+    vtkSMPTools::SetBackend("STDThread");
+  }
+  return vtkSMPTools::GetBackend();
+}
 
 bool vtkPointSetSurface::Fail(const std::string& message)
 {

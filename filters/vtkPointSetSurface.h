@@ -153,6 +153,17 @@ public:
   /// Points of the last prepared cloud left out for NaN or infinite coordinates.
   vtkIdType GetNumberOfSkippedPoints() const { return this->SkippedPoints; }
 
+  /**
+   * Lets the filters use every core: switches vtkSMPTools from its Sequential backend (the
+   * default of Debian's VTK and ParaView) to STDThread, unless a backend was chosen through the
+   * environment variable VTK_SMP_BACKEND_IN_USE or is already threaded. Returns the backend in
+   * use afterwards. The backend is a setting of the whole process, so no filter changes it: the
+   * application chooses, once, where it starts. The pss tool, the ParaView plugin when it loads
+   * and the Python module `pointsetsurfaces` when it is imported call this; a C++ application
+   * calls it (or vtkSMPTools::SetBackend) at start, or the filters run on one thread.
+   */
+  static const char* UseThreadedBackend();
+
 #ifndef __VTK_WRAP__
   /// The prepared definition (nullptr before a successful Prepare()).
   const pss::SurfaceDefinition* GetDefinition() const { return this->Definition.get(); }

@@ -11,5 +11,11 @@ derive from the classes of ``vtkmodules`` (imported on the way) and compose with
     projection = vtkPointSetSurfaceProjection()
     projection.SetInputConnection(reader.GetOutputPort())
     projection.GetSurface().SetVariantToCenterOfMass()
+
+Importing the package lets the filters use every core: vtkSMPTools' Sequential backend becomes
+STDThread unless VTK_SMP_BACKEND_IN_USE chose one (vtkPointSetSurface.UseThreadedBackend).
 """
 from .PointSetSurfacesFilters import *  # noqa: F401,F403
+from .PointSetSurfacesFilters import vtkPointSetSurface as _Surface
+
+_Surface.UseThreadedBackend()

@@ -37,6 +37,7 @@ args = parser.parse_args()
 import paraview.simple as pvs  # noqa: E402
 from paraview import servermanager  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkSMPTools  # noqa: E402
 from vtkmodules.vtkIOXML import vtkXMLGenericDataObjectReader  # noqa: E402
 
 PROXIES = [
@@ -72,6 +73,11 @@ if args.load == "loadplugin":
 else:
     check("PV_PLUGIN_PATH" in os.environ, "--load env needs PV_PLUGIN_PATH")
     namespace = vars(pvs)
+# Loading the plugin is where ParaView's Sequential vtkSMPTools becomes threaded (the filters never
+# change the process-wide backend themselves).
+if "VTK_SMP_BACKEND_IN_USE" not in os.environ:
+    backend = vtkSMPTools.GetBackend()
+    check(backend == "STDThread", "after loading the plugin vtkSMPTools runs on %s, not STDThread" % backend)
 for name in PROXIES:
     if not check(name in namespace, "proxy %s not available after loading the plugin (%s)" % (name, args.load)):
         sys.exit(1)

@@ -28,6 +28,12 @@ def main():
         return 1
     print("pointsetsurfaces from %s; module library %s" % (os.path.dirname(pointsetsurfaces.__file__), libraries[0]))
 
+    from vtkmodules.vtkCommonCore import vtkSMPTools
+
+    if "VTK_SMP_BACKEND_IN_USE" not in os.environ and vtkSMPTools.GetBackend() != "STDThread":
+        print("FAIL: importing pointsetsurfaces left vtkSMPTools on %s, not STDThread" % vtkSMPTools.GetBackend())
+        return 1
+
     rest = [a for a in args.rest if a != "--"]
     sys.argv = [args.example] + rest
     try:
