@@ -13,6 +13,7 @@
  * VTK's own readers are not instrumented (they are Debian's libraries); crashes inside them would
  * still show, as segfaults.
  */
+#include "FuzzContract.h"
 #include "PssIO.h"
 
 #include "pss/Core.h"
@@ -32,22 +33,11 @@
 #include <unistd.h>
 #include <vector>
 
+const char* const FuzzTargetName = "pss_fuzz_cli_input";
+
 namespace
 {
 
-[[noreturn]] void Fail(const char* what, int line)
-{
-  std::fprintf(stderr, "pss_fuzz_cli_input: contract broken at line %d: %s\n", line, what);
-  std::abort();
-}
-#define PSS_FUZZ_CHECK(cond)                                                                                       \
-  do                                                                                                               \
-  {                                                                                                                \
-    if (!(cond))                                                                                                   \
-    {                                                                                                              \
-      Fail(#cond, __LINE__);                                                                                       \
-    }                                                                                                              \
-  } while (false)
 
 std::string Folder;
 
@@ -57,7 +47,7 @@ void WriteFile(const std::string& path, const std::uint8_t* data, std::size_t si
   out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   if (!out)
   {
-    Fail("cannot write the fuzz input to a temporary file", __LINE__);
+    FuzzFail("cannot write the fuzz input to a temporary file", __LINE__);
   }
 }
 
@@ -123,7 +113,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
   buffer.push_back('\0');
   if (!mkdtemp(buffer.data()))
   {
-    Fail("mkdtemp failed", __LINE__);
+    FuzzFail("mkdtemp failed", __LINE__);
   }
   Folder = buffer.data();
   std::atexit([]() {

@@ -17,6 +17,7 @@
  * The value checks apply where the arithmetic is representable: coordinates and h within
  * [1e-100, 1e100] in magnitude (squared distances of larger numbers overflow double).
  */
+#include "FuzzContract.h"
 #include "pss/Core.h"
 
 #include <Eigen/Geometry>
@@ -33,24 +34,13 @@
 #include <stdexcept>
 #include <vector>
 
+const char* const FuzzTargetName = "pss_fuzz_core";
+
 namespace
 {
 
 using pss::Vec3;
 
-[[noreturn]] void Fail(const char* what, int line)
-{
-  std::fprintf(stderr, "pss_fuzz_core: contract broken at line %d: %s\n", line, what);
-  std::abort();
-}
-#define PSS_FUZZ_CHECK(cond)                                                                                       \
-  do                                                                                                               \
-  {                                                                                                                \
-    if (!(cond))                                                                                                   \
-    {                                                                                                              \
-      Fail(#cond, __LINE__);                                                                                       \
-    }                                                                                                              \
-  } while (false)
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
