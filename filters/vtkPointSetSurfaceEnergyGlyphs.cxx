@@ -30,7 +30,6 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkPointSetSurfaceEnergyGlyphs);
-vtkCxxSetObjectMacro(vtkPointSetSurfaceEnergyGlyphs, Surface, vtkPointSetSurface);
 
 namespace
 {
@@ -94,13 +93,9 @@ vtkPointSetSurfaceEnergyGlyphs::vtkPointSetSurfaceEnergyGlyphs()
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
-  this->Surface = vtkPointSetSurface::New();
 }
 
-vtkPointSetSurfaceEnergyGlyphs::~vtkPointSetSurfaceEnergyGlyphs()
-{
-  this->SetSurface(nullptr);
-}
+vtkPointSetSurfaceEnergyGlyphs::~vtkPointSetSurfaceEnergyGlyphs() = default;
 
 void vtkPointSetSurfaceEnergyGlyphs::SetSamplePointsConnection(vtkAlgorithmOutput* output)
 {
@@ -112,26 +107,6 @@ void vtkPointSetSurfaceEnergyGlyphs::SetSamplePointsData(vtkDataObject* data)
   this->SetInputData(1, data);
 }
 
-double vtkPointSetSurfaceEnergyGlyphs::GetEffectiveScale() const
-{
-  return this->Surface ? this->Surface->GetEffectiveScale() : 0.0;
-}
-
-vtkMTimeType vtkPointSetSurfaceEnergyGlyphs::GetMTime()
-{
-  return pss_vtk::LatestMTime(this->Superclass::GetMTime(), this->Surface);
-}
-
-int vtkPointSetSurfaceEnergyGlyphs::FillInputPortInformation(int port, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
-  if (port == 1)
-  {
-    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
-  }
-  return 1;
-}
-
 int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -141,7 +116,7 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   vtkPolyData* glyphs = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* fits = vtkPolyData::GetData(outputVector, 1);
   this->GlyphScale = 0.0;
-  if (!pss_vtk::PrepareSurface(this, this->Surface, cloud))
+  if (!this->PrepareSurface(cloud))
   {
     return 0;
   }
@@ -397,5 +372,4 @@ void vtkPointSetSurfaceEnergyGlyphs::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ScaleMode: " << (this->ScaleMode == SCALE_PER_GLYPH ? "PerGlyph" : "Global") << "\n";
   os << indent << "SegmentLength: " << this->SegmentLength << " (h)\n";
   os << indent << "GlyphScale: " << this->GlyphScale << "\n";
-  pss_vtk::PrintSurface(os, indent, this->Surface);
 }

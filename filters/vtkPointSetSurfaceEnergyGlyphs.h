@@ -48,15 +48,13 @@
 #define vtkPointSetSurfaceEnergyGlyphs_h
 
 #include "PointSetSurfacesFiltersModule.h" // for export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkPointSetSurfaceAlgorithm.h"
 
-class vtkPointSetSurface;
-
-class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceEnergyGlyphs : public vtkPolyDataAlgorithm
+class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceEnergyGlyphs : public vtkPointSetSurfaceAlgorithm
 {
 public:
   static vtkPointSetSurfaceEnergyGlyphs* New();
-  vtkTypeMacro(vtkPointSetSurfaceEnergyGlyphs, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkPointSetSurfaceEnergyGlyphs, vtkPointSetSurfaceAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum ScaleModeType
@@ -64,12 +62,6 @@ public:
     SCALE_GLOBAL = 0,
     SCALE_PER_GLYPH = 1
   };
-
-  ///@{
-  /// The surface definition and its parameters (never null; a default one is created).
-  void SetSurface(vtkPointSetSurface* surface);
-  vtkGetObjectMacro(Surface, vtkPointSetSurface);
-  ///@}
 
   /// Sample points (input 1). Without them every cloud point is a sample.
   void SetSamplePointsConnection(vtkAlgorithmOutput* output);
@@ -107,22 +99,15 @@ public:
   vtkGetMacro(SegmentLength, double);
   ///@}
 
-  /// The h used by the last update (after automatic scaling).
-  double GetEffectiveScale() const;
-
   /// The c of the last update in SCALE_GLOBAL mode (0 when every energy was 0); 0 in SCALE_PER_GLYPH.
   double GetGlyphScale() const { return this->GlyphScale; }
-
-  vtkMTimeType GetMTime() override;
 
 protected:
   vtkPointSetSurfaceEnergyGlyphs();
   ~vtkPointSetSurfaceEnergyGlyphs() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  vtkPointSetSurface* Surface = nullptr;
   int Resolution = 72;
   double GlyphSize = 1.0;
   int ScaleMode = SCALE_GLOBAL;

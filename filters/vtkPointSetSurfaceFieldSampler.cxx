@@ -377,8 +377,8 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
   projection.maxIterations = this->MaxIterations;
   projection.tolerance = this->Tolerance;
   pss::DomainThresholds thresholds;
-  thresholds.maxDistance = this->DomainMaxDistance;
-  thresholds.maxNormalAngle = this->DomainMaxNormalAngle;
+  thresholds.maxDistance = this->MaxDistance;
+  thresholds.maxNormalAngle = this->MaxNormalAngle;
 
   if (n > 0)
   {
@@ -473,8 +473,8 @@ void vtkPointSetSurfaceFieldSampler::PrintSelf(ostream& os, vtkIndent indent)
      << this->SampleDimensions[2] << ")\n";
   os << indent << "SamplingMargin: " << this->SamplingMargin << "\n";
   os << indent << "ComputeDomainLabels: " << (this->ComputeDomainLabels ? "On" : "Off") << "\n";
-  os << indent << "DomainMaxDistance: " << this->DomainMaxDistance << "\n";
-  os << indent << "DomainMaxNormalAngle: " << this->DomainMaxNormalAngle << "\n";
+  os << indent << "MaxDistance: " << this->MaxDistance << "\n";
+  os << indent << "MaxNormalAngle: " << this->MaxNormalAngle << "\n";
   os << indent << "MaxIterations: " << this->MaxIterations << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
   pss_vtk::PrintSurface(os, indent, this->Surface);

@@ -24,8 +24,8 @@
  *   practice, a quantity came out non-finite). Every other array is 0 there, never NaN.
  * - `DomainLabel` (ComputeDomainLabels on): pss::classifyStart of every sample, 0 in domain,
  *   1 spurious, 2 undefined, 3 not converged (see vtkPointSetSurfaceDomainClassifier). This
- *   projects every sample onto the surface (MaxIterations, Tolerance, DomainMaxDistance,
- *   DomainMaxNormalAngle) and is expensive: on an 81 x 81 grid around a circle it multiplied
+ *   projects every sample onto the surface (MaxIterations, Tolerance, MaxDistance,
+ *   MaxNormalAngle, named and bounded as vtkPointSetSurfaceDomainClassifier's) and is expensive: on an 81 x 81 grid around a circle it multiplied
  *   the time by 3 (Delta), 6 (CenterOfMass) and 45 (LevinMLS, whose far samples iterate long).
  *   Off by default.
  *
@@ -187,17 +187,17 @@ public:
   ///@}
 
   ///@{
-  /// Domain threshold: a fixed point farther than this from the cloud is spurious (units of h).
-  /// Default 1.
-  vtkSetClampMacro(DomainMaxDistance, double, 0.0, 1e6);
-  vtkGetMacro(DomainMaxDistance, double);
+  /// Domain threshold: a fixed point farther than this from the cloud is spurious (units of h),
+  /// within [1e-6, 1e6]. Default 1.
+  vtkSetClampMacro(MaxDistance, double, 1e-6, 1e6);
+  vtkGetMacro(MaxDistance, double);
   ///@}
 
   ///@{
   /// Domain threshold: largest angle between n at the fixed point and the cloud's normal there
   /// (degrees). Default 30.
-  vtkSetClampMacro(DomainMaxNormalAngle, double, 0.0, 90.0);
-  vtkGetMacro(DomainMaxNormalAngle, double);
+  vtkSetClampMacro(MaxNormalAngle, double, 0.0, 90.0);
+  vtkGetMacro(MaxNormalAngle, double);
   ///@}
 
   ///@{
@@ -235,8 +235,8 @@ protected:
   int SampleDimensions[3] = { 101, 101, 1 };
   double SamplingMargin = 3.0;
   bool ComputeDomainLabels = false;
-  double DomainMaxDistance = 1.0;
-  double DomainMaxNormalAngle = 30.0;
+  double MaxDistance = 1.0;
+  double MaxNormalAngle = 30.0;
   int MaxIterations = 100;
   double Tolerance = 1e-6;
 

@@ -26,35 +26,14 @@
 #include <stdexcept>
 
 vtkStandardNewMacro(vtkPointSetSurfaceMesher);
-vtkCxxSetObjectMacro(vtkPointSetSurfaceMesher, Surface, vtkPointSetSurface);
 
 vtkPointSetSurfaceMesher::vtkPointSetSurfaceMesher()
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(1);
-  this->Surface = vtkPointSetSurface::New();
 }
 
-vtkPointSetSurfaceMesher::~vtkPointSetSurfaceMesher()
-{
-  this->SetSurface(nullptr);
-}
-
-double vtkPointSetSurfaceMesher::GetEffectiveScale() const
-{
-  return this->Surface ? this->Surface->GetEffectiveScale() : 0.0;
-}
-
-vtkMTimeType vtkPointSetSurfaceMesher::GetMTime()
-{
-  return pss_vtk::LatestMTime(this->Superclass::GetMTime(), this->Surface);
-}
-
-int vtkPointSetSurfaceMesher::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
-  return 1;
-}
+vtkPointSetSurfaceMesher::~vtkPointSetSurfaceMesher() = default;
 
 namespace
 {
@@ -170,7 +149,7 @@ int vtkPointSetSurfaceMesher::RequestData(
 {
   vtkPointSet* cloud = vtkPointSet::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  if (!pss_vtk::PrepareSurface(this, this->Surface, cloud))
+  if (!this->PrepareSurface(cloud))
   {
     return 0;
   }
@@ -253,5 +232,4 @@ void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxHoleEdges: " << this->MaxHoleEdges << "\n";
   os << indent << "MinPieceArea: " << this->MinPieceArea << "\n";
   os << indent << "MaximumNumberOfBandCells: " << this->MaximumNumberOfBandCells << "\n";
-  pss_vtk::PrintSurface(os, indent, this->Surface);
 }

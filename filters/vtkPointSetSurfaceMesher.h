@@ -43,17 +43,15 @@
 #define vtkPointSetSurfaceMesher_h
 
 #include "PointSetSurfacesFiltersModule.h" // for export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkPointSetSurfaceAlgorithm.h"
 
 #include <string> // for std::string
 
-class vtkPointSetSurface;
-
-class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceMesher : public vtkPolyDataAlgorithm
+class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceMesher : public vtkPointSetSurfaceAlgorithm
 {
 public:
   static vtkPointSetSurfaceMesher* New();
-  vtkTypeMacro(vtkPointSetSurfaceMesher, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkPointSetSurfaceMesher, vtkPointSetSurfaceAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// How crossings are projected (values match vtkPointSetSurfaceProjection's).
@@ -62,15 +60,6 @@ public:
     EXTREMAL = 0,
     PLANE = 1
   };
-
-  ///@{
-  /// The surface definition and its parameters (shared with other filters). A default one exists.
-  virtual void SetSurface(vtkPointSetSurface*);
-  vtkGetObjectMacro(Surface, vtkPointSetSurface);
-  ///@}
-
-  /// The h used by the last update (0 before).
-  double GetEffectiveScale() const;
 
   ///@{
   /**
@@ -174,8 +163,6 @@ public:
   vtkGetMacro(MaximumNumberOfBandCells, vtkIdType);
   ///@}
 
-  vtkMTimeType GetMTime() override;
-
   /**
    * Wall time of the last update's stages, e.g. "band 0.05 s, corners 2.1 s, ...": what `pss mesh
    * --verbose` prints (kept out of the output so that the output stays bitwise reproducible).
@@ -186,10 +173,8 @@ protected:
   vtkPointSetSurfaceMesher();
   ~vtkPointSetSurfaceMesher() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  vtkPointSetSurface* Surface = nullptr;
   double CellSize = 1.0;
   double Band = 1.0;
   bool ProjectVertices = true;

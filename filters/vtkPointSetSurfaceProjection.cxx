@@ -24,19 +24,14 @@
 #include "pss/SurfaceDefinition.h"
 
 vtkStandardNewMacro(vtkPointSetSurfaceProjection);
-vtkCxxSetObjectMacro(vtkPointSetSurfaceProjection, Surface, vtkPointSetSurface);
 
 vtkPointSetSurfaceProjection::vtkPointSetSurfaceProjection()
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
-  this->Surface = vtkPointSetSurface::New();
 }
 
-vtkPointSetSurfaceProjection::~vtkPointSetSurfaceProjection()
-{
-  this->SetSurface(nullptr);
-}
+vtkPointSetSurfaceProjection::~vtkPointSetSurfaceProjection() = default;
 
 void vtkPointSetSurfaceProjection::SetStartPointsConnection(vtkAlgorithmOutput* output)
 {
@@ -46,26 +41,6 @@ void vtkPointSetSurfaceProjection::SetStartPointsConnection(vtkAlgorithmOutput* 
 void vtkPointSetSurfaceProjection::SetStartPointsData(vtkDataObject* data)
 {
   this->SetInputData(1, data);
-}
-
-double vtkPointSetSurfaceProjection::GetEffectiveScale() const
-{
-  return this->Surface ? this->Surface->GetEffectiveScale() : 0.0;
-}
-
-vtkMTimeType vtkPointSetSurfaceProjection::GetMTime()
-{
-  return pss_vtk::LatestMTime(this->Superclass::GetMTime(), this->Surface);
-}
-
-int vtkPointSetSurfaceProjection::FillInputPortInformation(int port, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
-  if (port == 1)
-  {
-    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
-  }
-  return 1;
 }
 
 bool vtkPointSetSurfaceProjection::BeginProjection(const pss::SurfaceDefinition&, vtkIdType)
@@ -93,7 +68,7 @@ int vtkPointSetSurfaceProjection::RequestData(
     inputVector[1]->GetNumberOfInformationObjects() > 0 ? vtkPointSet::GetData(inputVector[1], 0) : cloud;
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* lines = vtkPolyData::GetData(outputVector, 1);
-  if (!pss_vtk::PrepareSurface(this, this->Surface, cloud))
+  if (!this->PrepareSurface(cloud))
   {
     return 0;
   }
@@ -222,5 +197,4 @@ void vtkPointSetSurfaceProjection::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxTravel: " << this->MaxTravel << "\n";
   os << indent << "SeekMaxima: " << (this->SeekMaxima ? "On" : "Off") << "\n";
   os << indent << "GenerateProjectionLines: " << (this->GenerateProjectionLines ? "On" : "Off") << "\n";
-  pss_vtk::PrintSurface(os, indent, this->Surface);
 }

@@ -32,13 +32,12 @@
 #define vtkPointSetSurfaceProjection_h
 
 #include "PointSetSurfacesFiltersModule.h" // for export macro
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkPointSetSurfaceAlgorithm.h"
 
 #include <vector> // for std::vector
 
 class vtkPointData;
 class vtkPointSet;
-class vtkPointSetSurface;
 
 #ifndef __VTK_WRAP__
 namespace pss
@@ -49,11 +48,11 @@ struct ProjectionResult;
 }
 #endif
 
-class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceProjection : public vtkPolyDataAlgorithm
+class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceProjection : public vtkPointSetSurfaceAlgorithm
 {
 public:
   static vtkPointSetSurfaceProjection* New();
-  vtkTypeMacro(vtkPointSetSurfaceProjection, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkPointSetSurfaceProjection, vtkPointSetSurfaceAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   enum ProcedureType
@@ -61,12 +60,6 @@ public:
     EXTREMAL = 0,
     PLANE = 1
   };
-
-  ///@{
-  /// The surface definition and its parameters (never null; a default one is created).
-  void SetSurface(vtkPointSetSurface* surface);
-  vtkGetObjectMacro(Surface, vtkPointSetSurface);
-  ///@}
 
   /// Start points (input 1). Without them the cloud itself is projected.
   void SetStartPointsConnection(vtkAlgorithmOutput* output);
@@ -112,16 +105,10 @@ public:
   vtkBooleanMacro(GenerateProjectionLines, bool);
   ///@}
 
-  /// The h used by the last update (after automatic scaling).
-  double GetEffectiveScale() const;
-
-  vtkMTimeType GetMTime() override;
-
 protected:
   vtkPointSetSurfaceProjection();
   ~vtkPointSetSurfaceProjection() override;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
 #ifndef __VTK_WRAP__
@@ -149,7 +136,6 @@ protected:
     vtkPointData* outPD);
 #endif
 
-  vtkPointSetSurface* Surface = nullptr;
   int Procedure = EXTREMAL;
   int MaxIterations = 100;
   double Tolerance = 1e-6;

@@ -11,7 +11,7 @@ Fails (exit status 1, one line per problem) when
   the class's header and its superclasses' headers in filters/), or the member cannot be found;
 - a range or enumeration domain allows values that the C++ setter's vtkSetClampMacro clamps away;
 - a class of the VTK module has no proxy (vtkPointSetSurfaceImplicitFunction excepted: it is not a
-  pipeline object, see README "ParaView plugin"), or the surface sub-proxy does not expose every
+  pipeline object, see README "ParaView plugin"; nor the abstract vtkPointSetSurfaceAlgorithm), or the surface sub-proxy does not expose every
   property of the PointSetSurface proxy.
 Plain Python (no ParaView needed); run with pvpython so ctest needs nothing else.
 """
@@ -29,6 +29,8 @@ NOT_PROXIES = {
     # function proxies are not pipeline objects and cannot receive a pipeline output. The plugin
     # exposes g through the field sampler's ImplicitG array instead.
     "vtkPointSetSurfaceImplicitFunction",
+    # The abstract base of the polydata filters (no New()): its properties are its subclasses'.
+    "vtkPointSetSurfaceAlgorithm",
 }
 SYMBOLS = {
     "VTK_ID_MAX": float(2**63 - 1),

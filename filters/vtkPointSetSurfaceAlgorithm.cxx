@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPointSetSurfaceAlgorithm.h"
+
+#include "PointSetSurfacesVTKUtilities.h"
+#include "vtkPointSetSurface.h"
+
+#include "vtkInformation.h"
+#include "vtkObjectFactory.h"
+
+vtkCxxSetObjectMacro(vtkPointSetSurfaceAlgorithm, Surface, vtkPointSetSurface);
+
+vtkPointSetSurfaceAlgorithm::vtkPointSetSurfaceAlgorithm()
+{
+  this->Surface = vtkPointSetSurface::New();
+}
+
+vtkPointSetSurfaceAlgorithm::~vtkPointSetSurfaceAlgorithm()
+{
+  this->SetSurface(nullptr);
+}
+
+double vtkPointSetSurfaceAlgorithm::GetEffectiveScale() const
+{
+  return this->Surface ? this->Surface->GetEffectiveScale() : 0.0;
+}
+
+vtkMTimeType vtkPointSetSurfaceAlgorithm::GetMTime()
+{
+  return pss_vtk::LatestMTime(this->Superclass::GetMTime(), this->Surface);
+}
+
+int vtkPointSetSurfaceAlgorithm::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  if (port > 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
+  return 1;
+}
+
+bool vtkPointSetSurfaceAlgorithm::PrepareSurface(vtkPointSet* cloud, const char* what)
+{
+  return pss_vtk::PrepareSurface(this, this->Surface, cloud, what);
+}
+
+void vtkPointSetSurfaceAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  pss_vtk::PrintSurface(os, indent, this->Surface);
+}

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkPointSetSurfaceAlgorithm
+ * @brief   base of the filters that compute on a point-set surface and output polydata
+ *
+ * Owns what vtkPointSetSurfaceProjection (and so vtkPointSetSurfaceDomainClassifier),
+ * vtkPointSetSurfaceEnergyGlyphs and vtkPointSetSurfaceMesher share: the vtkPointSetSurface that
+ * says which surface and at which scale (a default one exists; several filters may share one),
+ * the modification time that includes it, the h of the last update, and the input ports: port 0
+ * is the cloud (any vtkPointSet), later ports are optional point sets (start or sample points).
+ *
+ * vtkPointSetSurfaceFieldSampler holds its surface the same way but derives from
+ * vtkDataSetAlgorithm, since its output is an image or the probe dataset's type.
+ *
+ * @sa vtkPointSetSurface
+ */
+#ifndef vtkPointSetSurfaceAlgorithm_h
+#define vtkPointSetSurfaceAlgorithm_h
+
+#include "PointSetSurfacesFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class vtkPointSet;
+class vtkPointSetSurface;
+
+class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceAlgorithm : public vtkPolyDataAlgorithm
+{
+public:
+  vtkTypeMacro(vtkPointSetSurfaceAlgorithm, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The surface definition and its parameters (shared with other filters). A default one exists.
+  virtual void SetSurface(vtkPointSetSurface*);
+  vtkGetObjectMacro(Surface, vtkPointSetSurface);
+  ///@}
+
+  /// The h used by the last update (after automatic scaling; 0 before).
+  double GetEffectiveScale() const;
+
+  /// Includes the surface's modification time, so changing its parameters re-executes the filter.
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkPointSetSurfaceAlgorithm();
+  ~vtkPointSetSurfaceAlgorithm() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /**
+   * Prepares the surface on @p cloud; on failure reports an error ("cannot define the
+   * surface<what>: ...") and returns false. Warns when cloud points with NaN or infinite
+   * coordinates were left out.
+   */
+  bool PrepareSurface(vtkPointSet* cloud, const char* what = "");
+
+  vtkPointSetSurface* Surface = nullptr;
+
+private:
+  vtkPointSetSurfaceAlgorithm(const vtkPointSetSurfaceAlgorithm&) = delete;
+  void operator=(const vtkPointSetSurfaceAlgorithm&) = delete;
+};
+
+#endif
