@@ -278,6 +278,40 @@ int vtkPointSetSurfaceFieldSampler::RequestUpdateExtent(
   return 1;
 }
 
+bool vtkPointSetSurfaceFieldSampler::SetUpSamplingGrid(vtkImageData* image, vtkPointSet* cloud, vtkInformation* outInfo)
+{
+  double origin[3], spacing[3];
+  if (!image)
+  {
+    vtkErrorMacro(<< "the output is not a vtkImageData");
+    return false;
+  }
+  if (!this->CheckSampleDimensions() || !this->ComputeGridGeometry(cloud, origin, spacing, false))
+  {
+    return false;
+  }
+  const int* d = this->SampleDimensions;
+  int extent[6] = { 0, d[0] - 1, 0, d[1] - 1, 0, d[2] - 1 };
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    int requested[6];
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), requested);
+    for (int a = 0; a < 3; ++a)
+    {
+      extent[2 * a] = std::max(extent[2 * a], requested[2 * a]);
+      extent[2 * a + 1] = std::min(extent[2 * a + 1], requested[2 * a + 1]);
+    }
+  }
+  image->Initialize();
+  image->SetExtent(extent);
+  image->SetOrigin(origin);
+  image->SetSpacing(spacing);
+  // Correct the announcement too if RequestInformation saw an older cloud (or none yet).
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  return true;
+}
+
 int vtkPointSetSurfaceFieldSampler::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -312,37 +346,13 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
     return 0;
   }
 
+  // The two modes differ only in where the samples are: the grid's points or the probe's.
   if (this->GenerateSamplingGrid)
   {
-    vtkImageData* image = vtkImageData::SafeDownCast(output);
-    double origin[3], spacing[3];
-    if (!image || !this->CheckSampleDimensions() || !this->ComputeGridGeometry(cloud, origin, spacing, false))
+    if (!this->SetUpSamplingGrid(vtkImageData::SafeDownCast(output), cloud, outInfo))
     {
-      if (!image)
-      {
-        vtkErrorMacro(<< "the output is not a vtkImageData");
-      }
       return 0;
     }
-    const int* d = this->SampleDimensions;
-    int extent[6] = { 0, d[0] - 1, 0, d[1] - 1, 0, d[2] - 1 };
-    if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
-    {
-      int requested[6];
-      outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), requested);
-      for (int a = 0; a < 3; ++a)
-      {
-        extent[2 * a] = std::max(extent[2 * a], requested[2 * a]);
-        extent[2 * a + 1] = std::min(extent[2 * a + 1], requested[2 * a + 1]);
-      }
-    }
-    image->Initialize();
-    image->SetExtent(extent);
-    image->SetOrigin(origin);
-    image->SetSpacing(spacing);
-    // Correct the announcement too if RequestInformation saw an older cloud (or none yet).
-    outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
-    outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
   }
   else
   {

@@ -87,14 +87,18 @@
  * RequestData (as vtkResampleToImage does with its input bounds). Only the update extent
  * requested downstream is sampled. Grids with a dimension below 1, more than 2^31
  * samples or more than 4 GiB of output arrays are rejected with an error.
+ * The grid stays a mode of this filter rather than a source of its own: both modes evaluate the
+ * same fields with the same surface, orientation and domain settings at the points of the
+ * output, and differ only in where those points come from (SetUpSamplingGrid or a copy of input
+ * 0). A second class would repeat every setting.
  *
  * Errors (vtkErrorMacro, the update fails, no output): empty cloud or cloud without a finite
  * point, h <= 0 (AutomaticScale off and ScaleFactor <= 0), an invalid reference direction or
  * point, no input 0 without GenerateSamplingGrid, an absurd grid. Cloud points with NaN or
  * infinite coordinates are skipped with a warning.
  *
- * Runs on all cores through vtkSMPTools (see PointSetSurfacesSMP.h), reports progress and
- * honours AbortExecute.
+ * Runs threaded through vtkSMPTools (on the backend the application chose: see
+ * vtkPointSetSurface::UseThreadedBackend), reports progress and honours AbortExecute.
  *
  * @sa vtkPointSetSurface vtkPointSetSurfaceImplicitFunction vtkPointSetSurfaceProjection
  *     vtkStreamTracer vtkContourFilter
@@ -249,6 +253,9 @@ private:
   // Origin and spacing of the generated grid for the prepared cloud; false (after an error unless
   // quiet) when the grid would be degenerate.
   bool ComputeGridGeometry(vtkPointSet* cloud, double origin[3], double spacing[3], bool quiet);
+  // GenerateSamplingGrid's path: gives @p image the grid's geometry (the requested part of its
+  // extent); false after an error. The probe's path is a shallow copy of input 0.
+  bool SetUpSamplingGrid(vtkImageData* image, vtkPointSet* cloud, vtkInformation* outInfo);
 };
 
 #endif

@@ -23,8 +23,8 @@
  * Output 1 (GenerateProjectionLines on): one line cell per start point from the start to the end
  * point (Figure 1 of the paper), with `Converged` and `StopReason` as cell data.
  *
- * Runs on all cores through vtkSMPTools (see PointSetSurfacesSMP.h about ParaView's default
- * Sequential backend), reports progress and honours AbortExecute.
+ * Runs threaded through vtkSMPTools (on the backend the application chose: see
+ * vtkPointSetSurface::UseThreadedBackend), reports progress and honours AbortExecute.
  *
  * @sa vtkPointSetSurface vtkPointSetSurfaceDomainClassifier
  */
