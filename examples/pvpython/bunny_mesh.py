@@ -48,11 +48,9 @@ import time
 import paraview.simple as pvs
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pss_example import TREE, black_scalar_bar, find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
+from pss_example import TREE, VARIANTS, black_scalar_bar, find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
 from paraview import servermanager
 
-VARIANTS = {"levin": "Levin MLS", "normalized": "Normalized MLS", "com": "Center of Mass",
-            "integral": "Integral Energy", "delta": "Delta Energy"}
 DEFAULT_CLOUD = os.path.join("..", "shared", "data", "stanford-bunny", "bunny_scans_merged.ply")
 CLOUD_COLOUR = [0.6, 0.1, 0.1]
 # The cloud's depth shading, near to far: light red to the plain cloud's dark red to near black

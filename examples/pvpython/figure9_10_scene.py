@@ -41,10 +41,8 @@ import sys
 import paraview.simple as pvs
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pss_example import black_scalar_bar, find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
+from pss_example import VARIANTS, black_scalar_bar, find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
 
-VARIANTS = {"levin": "Levin MLS", "normalized": "Normalized MLS", "com": "Center of Mass",
-            "integral": "Integral Energy", "delta": "Delta Energy"}
 SCENES = {"corner": "Corner", "noisy-curve": "Noisy Curve", "circle": "Circle", "line": "Line",
           "two-sheets": "Two Sheets"}
 BLUE = [0.1, 0.25, 1.0]

@@ -38,12 +38,10 @@ import sys
 import paraview.simple as pvs
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pss_example import black_scalar_bar, find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
+from pss_example import VARIANTS, black_scalar_bar, find_plugin, parse_size, white_view  # noqa: E402 (after the path above)
 from paraview import servermanager
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-VARIANTS = {"levin": "Levin MLS", "normalized": "Normalized MLS", "com": "Center of Mass",
-            "integral": "Integral Energy", "delta": "Delta Energy"}
 RED = [0.85, 0.1, 0.1]
 
 

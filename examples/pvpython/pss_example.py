@@ -1,5 +1,5 @@
-"""What the pvpython/pvbatch examples of PointSetSurfaces share: finding the plugin and reading
-an image size from the command line.
+"""What the pvpython/pvbatch examples of PointSetSurfaces share: finding the plugin, the names of
+the surface definitions and reading an image size from the command line.
 
 Imported by the example scripts beside it (each puts this folder on sys.path first, so they run
 from any working directory under pvpython or pvbatch).
@@ -12,6 +12,12 @@ import sys
 import paraview.simple as pvs
 
 TREE = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+
+# The surface definitions: the pss tool's name of each (--variant) -> the plugin's label of it
+# (the Variant property). Both come from the core's variant table; the test
+# VariantTable.EveryFaceAgrees fails if this dictionary drifts from it.
+VARIANTS = {"levin": "Levin MLS", "normalized": "Normalized MLS", "com": "Center of Mass",
+            "integral": "Integral Energy", "delta": "Delta Energy"}
 
 
 def parse_size(text, min_width=16, min_height=16):
