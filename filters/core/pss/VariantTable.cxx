@@ -25,9 +25,14 @@ std::unique_ptr<Base> make(const PointIndex& index, const SurfaceParameters& par
   return std::make_unique<Part>(index, params);
 }
 
+// The direction rules and energies of the paper's table, by the names the rows use.
 constexpr auto aboutQuery = covariance<CovarianceDirection::About::Query>;
 constexpr auto aboutCentroid = covariance<CovarianceDirection::About::Centroid>;
 constexpr auto integralArgmin = make<IntegralDirection, DirectionRule>;
+constexpr auto mls = make<MLSEnergy, Energy>;
+constexpr auto normalizedMls = make<NormalizedMLSEnergy, Energy>;
+constexpr auto integral = make<IntegralEnergy, Energy>;
+constexpr auto delta = make<DeltaEnergy, Energy>;
 
 } // namespace
 
@@ -37,26 +42,36 @@ const std::array<VariantInfo, VariantCount>& variantTable()
   // (the same, Eq. 1 with theta_N), centre of mass = (eigenvector of the covariance about c(x),
   // normalized Eq. 1), integral = (argmin of e_I, e_I), delta = (argmin of e_I, delta).
   static const std::array<VariantInfo, VariantCount> table{ {
-    { Variant::LevinMLS, "levin", "LevinMLS", "Levin MLS", aboutQuery, make<MLSEnergy, Energy> },
-    { Variant::NormalizedMLS, "normalized", "NormalizedMLS", "Normalized MLS", aboutQuery,
-      make<NormalizedMLSEnergy, Energy> },
-    { Variant::CenterOfMass, "com", "CenterOfMass", "Center of Mass", aboutCentroid,
-      make<NormalizedMLSEnergy, Energy> },
-    { Variant::Integral, "integral", "Integral", "Integral Energy", integralArgmin, make<IntegralEnergy, Energy> },
-    { Variant::Delta, "delta", "Delta", "Delta Energy", integralArgmin, make<DeltaEnergy, Energy> },
+    { Variant::LevinMLS, "levin", "LevinMLS", "Levin MLS", aboutQuery, mls },
+    { Variant::NormalizedMLS, "normalized", "NormalizedMLS", "Normalized MLS", aboutQuery, normalizedMls },
+    { Variant::CenterOfMass, "com", "CenterOfMass", "Center of Mass", aboutCentroid, normalizedMls },
+    { Variant::Integral, "integral", "Integral", "Integral Energy", integralArgmin, integral },
+    { Variant::Delta, "delta", "Delta", "Delta Energy", integralArgmin, delta },
   } };
   return table;
 }
 
-const VariantInfo& variantInfo(Variant v)
+namespace
+{
+
+// The row of v, or nullptr for a value outside the table (a cast from a bad int).
+const VariantInfo* findRow(Variant v)
 {
   const auto& table = variantTable();
   const auto row = static_cast<std::size_t>(v);
-  if (row >= table.size() || table[row].variant != v)
+  return row < table.size() && table[row].variant == v ? &table[row] : nullptr;
+}
+
+} // namespace
+
+const VariantInfo& variantInfo(Variant v)
+{
+  const VariantInfo* row = findRow(v);
+  if (!row)
   {
     throw std::invalid_argument("unknown surface variant " + std::to_string(static_cast<int>(v)));
   }
-  return table[row];
+  return *row;
 }
 
 std::unique_ptr<SurfaceDefinition> makeSurface(Variant v, const PointIndex& index, const SurfaceParameters& params)
@@ -66,9 +81,8 @@ std::unique_ptr<SurfaceDefinition> makeSurface(Variant v, const PointIndex& inde
 
 const char* variantName(Variant v)
 {
-  const auto& table = variantTable();
-  const auto row = static_cast<std::size_t>(v);
-  return row < table.size() ? table[row].name : "unknown";
+  const VariantInfo* row = findRow(v);
+  return row ? row->name : "unknown";
 }
 
 bool parseVariant(const std::string& text, Variant& out)
