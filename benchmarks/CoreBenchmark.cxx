@@ -133,11 +133,11 @@ double PeakKiB()
 }
 
 // Neighbours that carry weight at a point: those within the truncation band of the nearest.
-double NeighbourCount(const pss::PointIndex& index, const pss::SurfaceParameters& params, const pss::Vec3& x)
+double NeighbourCount(
+  const pss::PointIndex& index, const pss::SurfaceParameters& params, const pss::Vec3& x, pss::Workspace& ws)
 {
-  thread_local pss::Neighbourhood nb;
-  pss::gatherNeighbourhood(index, params, x, nb);
-  return static_cast<double>(nb.size());
+  pss::gatherNeighbourhood(index, params, x, ws.local, ws);
+  return static_cast<double>(ws.local.size());
 }
 
 RowResult ProjectRow(const std::vector<pss::Vec3>& cloud, int dimension, double h, pss::Variant variant,
@@ -186,9 +186,10 @@ RowResult ProjectRow(const std::vector<pss::Vec3>& cloud, int dimension, double 
     iterations += count;
   }
   const std::size_t probe = std::min<std::size_t>(n, 2000);
+  pss::Workspace ws;
   for (std::size_t i = 0; i < probe; ++i)
   {
-    neighbours += NeighbourCount(index, params, ends[i * n / probe]);
+    neighbours += NeighbourCount(index, params, ends[i * n / probe], ws);
   }
   row.meanIterations = iterations / n;
   row.meanNeighbours = neighbours / probe;

@@ -39,6 +39,8 @@
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 
+#include "pss/VariantTable.h"
+
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -109,8 +111,17 @@ void AddCommonOptions(OptionTable& t, Run& run)
 
 void AddSurfaceOptions(OptionTable& t, vtkPointSetSurface* s)
 {
-  t.Value("variant", "NAME", "levin | normalized | com | integral | delta (default com)", [s](const std::string& v) {
-    s->SetVariant(pss_cli::ToChoice("variant", v, { "levin", "normalized", "com", "integral", "delta" }));
+  // The choices are the core's variant table's names, in its order.
+  std::vector<std::string> variants;
+  std::string variantHelp;
+  for (const pss::VariantInfo& row : pss::variantTable())
+  {
+    variants.emplace_back(row.name);
+    variantHelp += (variantHelp.empty() ? "" : " | ") + variants.back();
+  }
+  variantHelp += std::string(" (default ") + pss::variantName(static_cast<pss::Variant>(s->GetVariant())) + ")";
+  t.Value("variant", "NAME", variantHelp, [s, variants](const std::string& v) {
+    s->SetVariant(static_cast<int>(pss::variantTable()[pss_cli::ToChoice("variant", v, variants)].variant));
   });
   t.Value("h", "H", "Gaussian scale h; turns the automatic scale off (default: automatic)", [s](const std::string& v) {
     s->SetScaleFactor(pss_cli::ToDouble("h", v));

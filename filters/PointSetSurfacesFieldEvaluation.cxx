@@ -82,7 +82,7 @@ bool Sanitize(double& v)
 }
 }
 
-FieldValues FieldEvaluator::Evaluate(const double xIn[3], unsigned parts) const
+FieldValues FieldEvaluator::Evaluate(const double xIn[3], pss::Workspace& ws, unsigned parts) const
 {
   FieldValues out;
   const pss::Vec3 x(xIn[0], xIn[1], xIn[2]);
@@ -93,7 +93,7 @@ FieldValues FieldEvaluator::Evaluate(const double xIn[3], unsigned parts) const
   bool finite = true;
   if (parts & FIELD_DIRECTIONAL)
   {
-    const pss::ImplicitSample s = pss::evaluateImplicit(this->Definition, x, this->Orient);
+    const pss::ImplicitSample s = pss::evaluateImplicit(this->Definition, x, this->Orient, ws);
     if (s.direction.n.allFinite())
     {
       // Zero where n is undefined (FieldValues::normal): the eigenvector of a degenerate
@@ -114,7 +114,7 @@ FieldValues FieldEvaluator::Evaluate(const double xIn[3], unsigned parts) const
   }
   if (parts & FIELD_DELTA)
   {
-    out.delta = this->Distance.delta(x);
+    out.delta = this->Distance.delta(x, ws);
     finite = Sanitize(out.delta) && finite;
   }
   out.valid = finite;

@@ -71,14 +71,14 @@ enum FieldParts : unsigned
 /**
  * Evaluates the fields of one prepared definition at arbitrary points. Construct it after the
  * definition is prepared; it holds references to @p surface and its index, so it must not outlive
- * them. Evaluate() is const and thread-safe (the core's queries are).
+ * them. Evaluate() is const and thread-safe given a workspace per thread.
  */
 class FieldEvaluator
 {
 public:
   FieldEvaluator(const pss::SurfaceDefinition& surface, const pss::Orientation& orientation);
 
-  FieldValues Evaluate(const double x[3], unsigned parts = FIELD_ALL) const;
+  FieldValues Evaluate(const double x[3], pss::Workspace& ws, unsigned parts = FIELD_ALL) const;
 
   const pss::SurfaceDefinition& Surface() const { return this->Definition; }
   const pss::Orientation& Orientation() const { return this->Orient; }

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PointSetSurfacesSMP.h"
 
+#include "pss/Workspace.h"
+
 #include "vtkAlgorithm.h"
+#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -13,6 +16,14 @@ namespace pss_vtk
 bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType)>& body,
   double progressBegin, double progressEnd)
 {
+  // An empty workspace allocates nothing: unused, it costs nothing.
+  return ParallelFor(
+    algorithm, n, [&](vtkIdType i, pss::Workspace&) { body(i); }, progressBegin, progressEnd);
+}
+
+bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType, pss::Workspace&)>& body,
+  double progressBegin, double progressEnd)
+{
   if (n <= 0)
   {
     return true;
@@ -22,14 +33,16 @@ bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(
   // Chunks small enough for balance (far-off points cost many iterations) and for progress.
   const int threads = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
   const vtkIdType grain = std::max<vtkIdType>(1, std::min<vtkIdType>(1024, n / (threads * 32)));
+  vtkSMPThreadLocal<pss::Workspace> workspaces;
   vtkSMPTools::For(0, n, grain, [&](vtkIdType begin, vtkIdType end) {
     if (aborted.load(std::memory_order_relaxed))
     {
       return;
     }
+    pss::Workspace& ws = workspaces.Local();
     for (vtkIdType i = begin; i < end; ++i)
     {
-      body(i);
+      body(i, ws);
     }
     const vtkIdType total = done.fetch_add(end - begin) + (end - begin);
     // When the whole range fits one chunk, vtkSMPTools::For runs it inline, outside any parallel

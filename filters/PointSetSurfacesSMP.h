@@ -15,6 +15,11 @@
 
 class vtkAlgorithm;
 
+namespace pss
+{
+struct Workspace;
+}
+
 namespace pss_vtk
 {
 
@@ -25,6 +30,11 @@ namespace pss_vtk
  * the loop was aborted.
  */
 bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType)>& body,
+  double progressBegin = 0.0, double progressEnd = 1.0);
+
+/// The same, handing @p body the core's Workspace of the thread that runs it (one per thread,
+/// through vtkSMPThreadLocal, for the loop's duration).
+bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType, pss::Workspace&)>& body,
   double progressBegin = 0.0, double progressEnd = 1.0);
 
 }

@@ -62,10 +62,10 @@ bool vtkPointSetSurfaceDomainClassifier::BeginProjection(const pss::SurfaceDefin
 }
 
 pss::ProjectionResult vtkPointSetSurfaceDomainClassifier::ProjectPoint(vtkIdType i, const double start[3],
-  const pss::SurfaceDefinition& surface, const pss::ProjectionOptions& options)
+  const pss::SurfaceDefinition& surface, const pss::ProjectionOptions& options, pss::Workspace& ws)
 {
   pss::DomainEvidence ev =
-    pss::classifyStart(surface, pss::Vec3(start[0], start[1], start[2]), options, this->Internals->Thresholds,
+    pss::classifyStart(surface, pss::Vec3(start[0], start[1], start[2]), options, this->Internals->Thresholds, ws,
       this->Internals->Normals.get());
   vtkInternals::Evidence& out = this->Internals->Points[static_cast<std::size_t>(i)];
   out.label = ev.label;

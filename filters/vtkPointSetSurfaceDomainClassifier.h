@@ -83,7 +83,7 @@ protected:
 #ifndef __VTK_WRAP__
   bool BeginProjection(const pss::SurfaceDefinition& surface, vtkIdType numberOfStarts) override;
   pss::ProjectionResult ProjectPoint(vtkIdType i, const double start[3], const pss::SurfaceDefinition& surface,
-    const pss::ProjectionOptions& options) override;
+    const pss::ProjectionOptions& options, pss::Workspace& ws) override;
   bool AddPointArrays(vtkPointSet* starts, const std::vector<pss::ProjectionResult>& results,
     vtkPointData* outPD) override;
 #endif

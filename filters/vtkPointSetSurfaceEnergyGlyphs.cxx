@@ -155,23 +155,24 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   std::vector<double> value(m * nDirs, 0.0);
   std::vector<double> logScale(perGlyph ? m * nDirs : 0, 0.0);
   if (!pss_vtk::ParallelFor(
-        this, static_cast<vtkIdType>(m), [&](vtkIdType s) { normals[s] = surface.direction(xs[s]); }, 0.0, 0.1))
+        this, static_cast<vtkIdType>(m),
+        [&](vtkIdType s, pss::Workspace& ws) { normals[s] = surface.direction(xs[s], ws); }, 0.0, 0.1))
   {
     return 1; // aborted: leave the outputs empty
   }
   if (!pss_vtk::ParallelFor(this, static_cast<vtkIdType>(m * nDirs),
-        [&](vtkIdType k) {
+        [&](vtkIdType k, pss::Workspace& ws) {
           const std::size_t s = static_cast<std::size_t>(k) / nDirs;
           const std::size_t d = static_cast<std::size_t>(k) % nDirs;
           if (perGlyph)
           {
-            const pss::LineSample ls = surface.lineSample(xs[s], dirs[d]);
+            const pss::LineSample ls = surface.lineSample(xs[s], dirs[d], ws);
             value[k] = ls.value;
             logScale[k] = ls.logScale;
           }
           else
           {
-            value[k] = surface.energy(xs[s], dirs[d]);
+            value[k] = surface.energy(xs[s], dirs[d], ws);
           }
         },
         0.1, 0.9))

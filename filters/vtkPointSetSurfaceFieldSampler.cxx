@@ -407,10 +407,10 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
     const pss::CloudNormals cloudNormals(surface);
     completed = pss_vtk::ParallelFor(
       this, n,
-      [&](vtkIdType i) {
+      [&](vtkIdType i, pss::Workspace& ws) {
         double x[3];
         output->GetPoint(i, x);
-        const pss_vtk::FieldValues v = evaluator.Evaluate(x);
+        const pss_vtk::FieldValues v = evaluator.Evaluate(x, ws);
         std::copy(v.normal.data(), v.normal.data() + 3, normalOut + 3 * i);
         energyOut[i] = v.energy;
         deltaOut[i] = v.delta;
@@ -421,7 +421,7 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
         if (labelOut)
         {
           const pss::DomainEvidence ev =
-            pss::classifyStart(surface, pss::Vec3(x[0], x[1], x[2]), projection, thresholds, &cloudNormals);
+            pss::classifyStart(surface, pss::Vec3(x[0], x[1], x[2]), projection, thresholds, ws, &cloudNormals);
           labelOut[i] = static_cast<int>(ev.label);
         }
       },

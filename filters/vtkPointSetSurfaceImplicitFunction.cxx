@@ -13,12 +13,14 @@
 
 #include "pss/PointIndex.h"
 #include "pss/SurfaceDefinition.h"
+#include "pss/Workspace.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <mutex>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkPointSetSurfaceImplicitFunction);
 vtkCxxSetObjectMacro(vtkPointSetSurfaceImplicitFunction, Surface, vtkPointSetSurface);
@@ -32,6 +34,29 @@ struct vtkPointSetSurfaceImplicitFunction::Internals
   std::unique_ptr<pss_vtk::FieldEvaluator> Evaluator; // null when the last preparation failed
   double H = 0.0;
   int Dimension = 3;
+
+  // Any thread of the host may evaluate: each evaluation borrows an idle workspace (or makes
+  // one) and gives it back, so consecutive samples reuse its cached neighbours.
+  std::mutex IdleMutex;
+  std::vector<std::unique_ptr<pss::Workspace>> Idle;
+
+  std::unique_ptr<pss::Workspace> Borrow()
+  {
+    std::lock_guard<std::mutex> lock(this->IdleMutex);
+    if (this->Idle.empty())
+    {
+      return std::make_unique<pss::Workspace>();
+    }
+    std::unique_ptr<pss::Workspace> ws = std::move(this->Idle.back());
+    this->Idle.pop_back();
+    return ws;
+  }
+
+  void GiveBack(std::unique_ptr<pss::Workspace> ws)
+  {
+    std::lock_guard<std::mutex> lock(this->IdleMutex);
+    this->Idle.push_back(std::move(ws));
+  }
 };
 
 vtkPointSetSurfaceImplicitFunction::vtkPointSetSurfaceImplicitFunction()
@@ -162,15 +187,21 @@ double vtkPointSetSurfaceImplicitFunction::EvaluateFunction(double x[3])
   {
     return 0.0;
   }
+  std::unique_ptr<pss::Workspace> ws = this->State->Borrow();
+  double value = 0.0;
   switch (this->OutputQuantity)
   {
     case DELTA:
-      return evaluator->Evaluate(x, pss_vtk::FIELD_DELTA).delta;
+      value = evaluator->Evaluate(x, *ws, pss_vtk::FIELD_DELTA).delta;
+      break;
     case ENERGY:
-      return evaluator->Evaluate(x, pss_vtk::FIELD_DIRECTIONAL).energy;
+      value = evaluator->Evaluate(x, *ws, pss_vtk::FIELD_DIRECTIONAL).energy;
+      break;
     default:
-      return evaluator->Evaluate(x, pss_vtk::FIELD_DIRECTIONAL).g;
+      value = evaluator->Evaluate(x, *ws, pss_vtk::FIELD_DIRECTIONAL).g;
   }
+  this->State->GiveBack(std::move(ws));
+  return value;
 }
 
 void vtkPointSetSurfaceImplicitFunction::EvaluateGradient(double x[3], double g[3])

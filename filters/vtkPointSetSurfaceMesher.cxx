@@ -186,7 +186,8 @@ int vtkPointSetSurfaceMesher::RequestData(
   // Progress: the corners' n and g, then the (cheap, sequential) orientation and contouring,
   // then the projections of the crossings.
   if (!pss_vtk::ParallelFor(this, static_cast<vtkIdType>(mesher->gridVertexCount()),
-        [&](vtkIdType i) { mesher->evaluateVertex(static_cast<std::size_t>(i)); }, 0.0, 0.45))
+        [&](vtkIdType i, pss::Workspace& ws) { mesher->evaluateVertex(static_cast<std::size_t>(i), ws); }, 0.0,
+        0.45))
   {
     return 1; // aborted: empty output
   }
@@ -197,12 +198,14 @@ int vtkPointSetSurfaceMesher::RequestData(
   lap("contour");
   this->UpdateProgress(0.5);
   if (!pss_vtk::ParallelFor(this, static_cast<vtkIdType>(mesher->crossingCount()),
-        [&](vtkIdType i) { mesher->classifyCrossing(static_cast<std::size_t>(i)); }, 0.5, 0.98))
+        [&](vtkIdType i, pss::Workspace& ws) { mesher->classifyCrossing(static_cast<std::size_t>(i), ws); }, 0.5,
+        0.98))
   {
     return 1;
   }
   lap("projection");
-  const pss::SurfaceMesh mesh = mesher->finish();
+  pss::Workspace ws;
+  const pss::SurfaceMesh mesh = mesher->finish(ws);
   WriteMesh(mesh, output);
   lap("output");
   this->TimingReport = timing.str();

@@ -48,10 +48,10 @@ bool vtkPointSetSurfaceProjection::BeginProjection(const pss::SurfaceDefinition&
   return true;
 }
 
-pss::ProjectionResult vtkPointSetSurfaceProjection::ProjectPoint(
-  vtkIdType, const double start[3], const pss::SurfaceDefinition& surface, const pss::ProjectionOptions& options)
+pss::ProjectionResult vtkPointSetSurfaceProjection::ProjectPoint(vtkIdType, const double start[3],
+  const pss::SurfaceDefinition& surface, const pss::ProjectionOptions& options, pss::Workspace& ws)
 {
-  return pss::project(surface, pss::Vec3(start[0], start[1], start[2]), options);
+  return pss::project(surface, pss::Vec3(start[0], start[1], start[2]), options, ws);
 }
 
 bool vtkPointSetSurfaceProjection::AddPointArrays(
@@ -94,9 +94,9 @@ int vtkPointSetSurfaceProjection::RequestData(
   std::vector<pss::ProjectionResult> results(startPoints.size());
   // Visiting the starts in spatial order lets consecutive projections share cached neighbours.
   const std::vector<std::uint32_t> order = pss::spatialOrder(startPoints);
-  if (!pss_vtk::ParallelFor(this, n, [&](vtkIdType k) {
+  if (!pss_vtk::ParallelFor(this, n, [&](vtkIdType k, pss::Workspace& ws) {
         const vtkIdType i = order[k];
-        results[i] = this->ProjectPoint(i, startPoints[i].data(), surface, options);
+        results[i] = this->ProjectPoint(i, startPoints[i].data(), surface, options, ws);
       }))
   {
     return 1; // aborted: leave the outputs empty

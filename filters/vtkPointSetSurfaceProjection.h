@@ -45,6 +45,7 @@ namespace pss
 class SurfaceDefinition;
 struct ProjectionOptions;
 struct ProjectionResult;
+struct Workspace;
 }
 #endif
 
@@ -123,10 +124,10 @@ protected:
    * Hook for subclasses: the per-point work for start point @p i at @p start. Called from several
    * threads at once, exactly once per i: an override may only write state belonging to i. It must
    * return the projection of @p start with @p options (the standard arrays are made from it).
-   * The default is pss::project.
+   * @p ws is the calling thread's. The default is pss::project.
    */
   virtual pss::ProjectionResult ProjectPoint(vtkIdType i, const double start[3],
-    const pss::SurfaceDefinition& surface, const pss::ProjectionOptions& options);
+    const pss::SurfaceDefinition& surface, const pss::ProjectionOptions& options, pss::Workspace& ws);
 
   /**
    * Hook for subclasses: add arrays computed from the projections to the output point data.

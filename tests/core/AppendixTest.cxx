@@ -74,6 +74,7 @@ std::vector<SinglePoint> configurations(int dim)
 
 void checkIntegralClosedForms(int dim)
 {
+  Workspace ws;
   for (const SinglePoint& c : configurations(dim))
   {
     PointIndex index(std::vector<Vec3>{ c.p }, dim);
@@ -82,18 +83,18 @@ void checkIntegralClosedForms(int dim)
     {
       SurfaceParameters prm = params(c.h);
       prm.integrandPower = power;
-      IntegralEnergy s(index, prm);
+      const SurfaceDefinition s(variantInfo(Variant::Integral), index, prm);
       SCOPED_TRACE("power " + std::to_string(power) + " h " + std::to_string(c.h) + " k/h " +
         std::to_string(c.k / c.h));
       double lo = 1e300, hi = -1e300;
       for (int i = 0; i < 40; ++i)
       {
         const Vec3 a = i == 0 ? c.u : randomUnit(rng, dim);
-        const double e = s.energy(c.x(), a);
+        const double e = s.energy(c.x(), a, ws);
         const double expected = closedForm(dim, power, c.h, c.k, a.dot(c.u));
         EXPECT_NEAR(e, expected, 1e-10 * expected) << "a = " << a.transpose();
         // lineSample's value must be the same energy (stored relative to exp(logScale)).
-        EXPECT_NEAR(s.lineSample(c.x(), a).trueValue(), expected, 1e-10 * expected);
+        EXPECT_NEAR(s.lineSample(c.x(), a, ws).trueValue(), expected, 1e-10 * expected);
         lo = std::min(lo, e);
         hi = std::max(hi, e);
       }
@@ -101,14 +102,14 @@ void checkIntegralClosedForms(int dim)
       {
         // Appendix: integrating delta (not delta^2) cannot tell directions apart.
         EXPECT_LT((hi - lo) / lo, 1e-9);
-        const Direction d = s.direction(c.x());
+        const Direction d = s.direction(c.x(), ws);
         EXPECT_FALSE(d.defined) << "n_I is not unique with power 1, stability " << d.stability;
         EXPECT_LT(d.stability, 1e-8);
       }
       else
       {
         EXPECT_GT((hi - lo) / lo, 1e-3);
-        const Direction d = s.direction(c.x());
+        const Direction d = s.direction(c.x(), ws);
         EXPECT_TRUE(d.defined);
         // n_I = u (the gradient direction of the distance function), to search accuracy.
         const double tol = dim == 2 ? 1e-6 : 1e-5;
@@ -119,10 +120,10 @@ void checkIntegralClosedForms(int dim)
         EXPECT_NEAR(d.stability, (ePerp - eMin) / (ePerp + eMin), 1e-6);
         // The tangent direction has strictly larger energy than the normal (paper: v^2 term).
         const Vec3 t = dim == 2 ? Vec3(-c.u.y(), c.u.x(), 0) : c.u.cross(std::abs(c.u.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)).normalized();
-        EXPECT_LT(s.energy(c.x(), c.u), s.energy(c.x(), t));
+        EXPECT_LT(s.energy(c.x(), c.u, ws), s.energy(c.x(), t, ws));
       }
       // Slope along a = u: the closed form differentiated in k.
-      const LineSample ls = s.lineSample(c.x(), c.u);
+      const LineSample ls = s.lineSample(c.x(), c.u, ws);
       const double slope = closedFormSlopeAlongU(dim, power, c.h, c.k);
       EXPECT_NEAR(ls.trueSlope(), slope, 1e-9 * std::abs(slope));
     }
@@ -150,6 +151,7 @@ TEST(Appendix, IntegralEnergySinglePoint3D)
 // so 1e-12 relative (rounding only).
 TEST(Appendix, OtherEnergiesSinglePoint)
 {
+  Workspace ws;
   for (int dim : { 2, 3 })
   {
     for (const SinglePoint& c : configurations(dim))
@@ -181,9 +183,9 @@ TEST(Appendix, OtherEnergiesSinglePoint)
               slope = -2 * q;
               break;
           }
-          const LineSample ls = s->lineSample(c.x(), a);
+          const LineSample ls = s->lineSample(c.x(), a, ws);
           const double scale = v == Variant::LevinMLS ? theta * c.k * c.k : c.k * c.k;
-          EXPECT_NEAR(s->energy(c.x(), a), e, 1e-12 * scale);
+          EXPECT_NEAR(s->energy(c.x(), a, ws), e, 1e-12 * scale);
           EXPECT_NEAR(ls.trueValue(), e, 1e-12 * scale);
           EXPECT_NEAR(ls.trueSlope(), slope, 1e-12 * scale / c.h * 10);
           EXPECT_NEAR(ls.nearestSqDist, c.k * c.k, 1e-12 * c.k * c.k);

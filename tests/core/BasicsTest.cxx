@@ -76,6 +76,7 @@ TEST(Factory, RejectsEmptyIndexAndBadScale)
 // Truth: a start with a NaN/Inf coordinate cannot be projected; the contract says InvalidInput.
 TEST(Projection, NonFiniteStartIsInvalidInput)
 {
+  Workspace ws;
   PointIndex index(lineCloud(3.0, 0.1), 2);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (Variant v : allVariants())
@@ -88,7 +89,7 @@ TEST(Projection, NonFiniteStartIsInvalidInput)
       {
         ProjectionOptions opt;
         opt.procedure = proc;
-        const ProjectionResult r = project(*s, start, opt);
+        const ProjectionResult r = project(*s, start, opt, ws);
         EXPECT_EQ(r.reason, StopReason::InvalidInput);
         EXPECT_FALSE(r.converged);
       }
@@ -142,6 +143,7 @@ TEST(Quadrature, GaussHermiteIsExactForPolynomials)
 // but it must never hand back a minimum (flat line, Levin, start 2h above: n is tangent there).
 TEST(Projection, SeekingMaximaNeverReturnsMinimum)
 {
+  Workspace ws;
   const double h = 1.0;
   PointIndex index(lineCloud(12 * h, 0.1 * h), 2);
   auto s = makeSurface(Variant::LevinMLS, index, params(h));
@@ -149,7 +151,7 @@ TEST(Projection, SeekingMaximaNeverReturnsMinimum)
   opt.seekMaxima = true;
   for (const Vec3& start : { Vec3(0.0, 2 * h, 0), Vec3(0.37 * h, 2 * h, 0), Vec3(-1.3 * h, -2 * h, 0) })
   {
-    const ProjectionResult r = project(*s, start, opt);
+    const ProjectionResult r = project(*s, start, opt, ws);
     SCOPED_TRACE(stopReasonName(r.reason));
     EXPECT_NE(r.type, ExtremumType::Minimum) << "at " << r.point.transpose();
     EXPECT_TRUE(r.type == ExtremumType::Maximum || r.reason == StopReason::NoExtremum)
@@ -256,6 +258,7 @@ TEST(Kernel, EigenDirectionFromNearbyFrameMatchesTruth)
 // with the same weights and sums, bit for bit, as gathering it from a k-d tree fetch at the point.
 TEST(Kernel, FocusedGatherMatchesPlainGatherBitwise)
 {
+  Workspace ws;
   const PointIndex index(randomBox(20000, 3, 20.0, 11), 3);
   SurfaceParameters params;
   params.h = 1.0;
@@ -271,15 +274,15 @@ TEST(Kernel, FocusedGatherMatchesPlainGatherBitwise)
   std::vector<Neighbourhood> plain(queries.size());
   for (std::size_t i = 0; i < queries.size(); ++i)
   {
-    gatherNeighbourhood(index, params, queries[i], plain[i]);
+    gatherNeighbourhood(index, params, queries[i], plain[i], ws);
   }
   // ...then the same queries after a wider prefetch and a focus on the region they lie in.
-  prefetchNeighbourhoods(index, params, centre, 3.0 * reach);
-  focusNeighbourhoods(index, params, centre, reach);
+  prefetchNeighbourhoods(index, params, centre, 3.0 * reach, ws);
+  focusNeighbourhoods(index, params, centre, reach, ws);
   for (std::size_t i = 0; i < queries.size(); ++i)
   {
     Neighbourhood nb;
-    gatherNeighbourhood(index, params, queries[i], nb);
+    gatherNeighbourhood(index, params, queries[i], nb, ws);
     const Neighbourhood& ref = plain[i];
     ASSERT_EQ(nb.size(), ref.size()) << "query " << i;
     ASSERT_GT(nb.size(), 10);

@@ -61,6 +61,7 @@ void expectClose(double analytic, double numeric, double scale, const std::strin
 
 void checkLineSlopes(int dim)
 {
+  Workspace ws;
   const Cloud c = makeCloud(dim);
   PointIndex index(c.pts, dim);
   const double eps = 1e-4 * c.h;
@@ -72,10 +73,10 @@ void checkLineSlopes(int dim)
     for (const Vec3& x : queries(c, n, 55u))
     {
       const Vec3 a = randomUnit(rng, dim);
-      const LineSample ls = s->lineSample(x, a);
-      const double ep = s->energy(x + eps * a, a);
-      const double em = s->energy(x - eps * a, a);
-      const double e0 = s->energy(x, a);
+      const LineSample ls = s->lineSample(x, a, ws);
+      const double ep = s->energy(x + eps * a, a, ws);
+      const double em = s->energy(x - eps * a, a, ws);
+      const double e0 = s->energy(x, a, ws);
       expectClose(ls.trueValue(), e0, 0.0, std::string(variantName(v)) + " value");
       expectClose(ls.trueSlope(), (ep - em) / (2 * eps), e0 / c.h,
         std::string(variantName(v)) + " slope dim " + std::to_string(dim));
@@ -85,6 +86,7 @@ void checkLineSlopes(int dim)
 
 void checkImplicitG(int dim)
 {
+  Workspace ws;
   const Cloud c = makeCloud(dim);
   PointIndex index(c.pts, dim);
   const double eps = 1e-4 * c.h;
@@ -96,7 +98,7 @@ void checkImplicitG(int dim)
     int tested = 0;
     for (const Vec3& x : queries(c, n, 66u))
     {
-      const ImplicitSample is = evaluateImplicit(*s, x, orient);
+      const ImplicitSample is = evaluateImplicit(*s, x, orient, ws);
       if (!is.direction.defined)
       {
         continue;
@@ -104,13 +106,13 @@ void checkImplicitG(int dim)
       ++tested;
       const Vec3 nn = is.direction.n;
       EXPECT_NEAR(nn.norm(), 1.0, 1e-12);
-      const double e0 = s->energy(x, nn);
+      const double e0 = s->energy(x, nn, ws);
       expectClose(is.energy, e0, 0.0, std::string(variantName(v)) + " energy");
-      const double fd = (s->energy(x + eps * nn, nn) - s->energy(x - eps * nn, nn)) / (2 * eps);
+      const double fd = (s->energy(x + eps * nn, nn, ws) - s->energy(x - eps * nn, nn, ws)) / (2 * eps);
       expectClose(is.g, fd, e0 / c.h, std::string(variantName(v)) + " g dim " + std::to_string(dim));
       // The second derivative along n (a central difference of the slope inside the core) must
       // agree with the second difference of the energy to the accuracy of two differences: 1e-3.
-      const double fd2 = (s->energy(x + 10 * eps * nn, nn) - 2 * e0 + s->energy(x - 10 * eps * nn, nn)) /
+      const double fd2 = (s->energy(x + 10 * eps * nn, nn, ws) - 2 * e0 + s->energy(x - 10 * eps * nn, nn, ws)) /
         (100 * eps * eps);
       EXPECT_NEAR(is.curvature, fd2, 1e-3 * std::max(std::abs(fd2), e0 / (c.h * c.h)))
         << variantName(v) << " curvature";
@@ -129,6 +131,7 @@ void checkImplicitG(int dim)
 
 void checkDistanceGradient(int dim)
 {
+  Workspace ws;
   const Cloud c = makeCloud(dim);
   PointIndex index(c.pts, dim);
   DistanceField field(index, params(c.h, 6.0));
@@ -136,11 +139,11 @@ void checkDistanceGradient(int dim)
   for (const Vec3& x : queries(c, 40, 88u))
   {
     Vec3 grad;
-    const double delta = field.deltaAndGradient(x, grad);
+    const double delta = field.deltaAndGradient(x, ws, grad);
     for (int k = 0; k < dim; ++k)
     {
       const Vec3 e = Vec3::Unit(k);
-      const double fd = (field.delta(x + eps * e) - field.delta(x - eps * e)) / (2 * eps);
+      const double fd = (field.delta(x + eps * e, ws) - field.delta(x - eps * e, ws)) / (2 * eps);
       expectClose(grad[k], fd, std::max(grad.norm(), delta / c.h), "d delta / dx" + std::to_string(k));
     }
     if (dim == 2)

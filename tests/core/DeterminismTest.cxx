@@ -127,6 +127,7 @@ TEST(Determinism, OverflowingStartDoesNotChangeTheNextProjection)
 // uncached value, bit for bit, and on a plane that is the plane's normal.
 TEST(Determinism, CloudNormalsSharedByThreadsAreTheUncachedOnes)
 {
+  Workspace ws;
   const std::vector<Vec3> cloud = planeCloud(4.0, 0.25);
   PointIndex index(cloud, 3);
   const auto surface = makeSurface(Variant::CenterOfMass, index, params(0.5));
@@ -134,16 +135,16 @@ TEST(Determinism, CloudNormalsSharedByThreadsAreTheUncachedOnes)
   const std::size_t n = index.size();
   std::vector<Direction> got(2 * n);
   // Each point asked for twice, from the two ends of the range, so the two threads race for it.
-  parallelFor(2 * n, 2, [&](std::size_t begin, std::size_t end) {
+  parallelFor(2 * n, 2, [&](std::size_t begin, std::size_t end, Workspace& worker) {
     for (std::size_t k = begin; k < end; ++k)
     {
-      got[k] = normals.at(k < n ? k : 2 * n - 1 - k);
+      got[k] = normals.at(k < n ? k : 2 * n - 1 - k, worker);
     }
   });
   for (std::size_t k = 0; k < 2 * n; ++k)
   {
     const std::size_t i = k < n ? k : 2 * n - 1 - k;
-    const Direction truth = cloudNormalAt(*surface, i);
+    const Direction truth = cloudNormalAt(*surface, i, ws);
     ASSERT_TRUE(got[k].defined) << i;
     ASSERT_EQ(0, std::memcmp(got[k].n.data(), truth.n.data(), sizeof(double) * 3)) << i;
     ASSERT_EQ(got[k].stability, truth.stability) << i;

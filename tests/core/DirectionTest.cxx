@@ -22,9 +22,10 @@ namespace
 /// |n . normal| > 0.5 at height z above (offset, 0[, 0]).
 bool isNormalAt(const SurfaceDefinition& s, double offset, double z)
 {
+  Workspace ws;
   const Vec3 x = s.dimension() == 2 ? Vec3(offset, z, 0) : Vec3(offset, 0, z);
   const Vec3 normal = s.dimension() == 2 ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
-  return std::abs(s.direction(x).n.dot(normal)) > 0.5;
+  return std::abs(s.direction(x, ws).n.dot(normal)) > 0.5;
 }
 
 /// Bisection on the height for the switch from normal (below) to tangent (above).
@@ -40,6 +41,7 @@ double flipHeight(const SurfaceDefinition& s, double offset, double lo, double h
 
 void checkLevinFlip(const PointIndex& index, double h)
 {
+  Workspace ws;
   const int dim = index.dimension();
   const Vec3 normal = dim == 2 ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
   for (Variant v : { Variant::LevinMLS, Variant::NormalizedMLS })
@@ -52,14 +54,14 @@ void checkLevinFlip(const PointIndex& index, double h)
       for (double z : { 0.1 * h, 0.5 * h, -0.5 * h })
       {
         const Vec3 x = dim == 2 ? Vec3(offset, z, 0) : Vec3(offset, 0, z);
-        const Direction d = s->direction(x);
+        const Direction d = s->direction(x, ws);
         EXPECT_TRUE(d.defined) << "z = " << z / h << "h";
         EXPECT_GT(std::abs(d.n.dot(normal)), 0.999) << "z = " << z / h << "h, n = " << d.n.transpose();
       }
       for (double z : { 0.9 * h, 1.5 * h, -0.9 * h })
       {
         const Vec3 x = dim == 2 ? Vec3(offset, z, 0) : Vec3(offset, 0, z);
-        const Direction d = s->direction(x);
+        const Direction d = s->direction(x, ws);
         EXPECT_LT(std::abs(d.n.dot(normal)), 1e-3) << "z = " << z / h << "h, n = " << d.n.transpose();
         if (dim == 2)
         {
@@ -79,6 +81,7 @@ void checkLevinFlip(const PointIndex& index, double h)
 void checkStaysNormal(const PointIndex& index, double h, Variant v, std::initializer_list<double> heights,
   std::initializer_list<double> offsets)
 {
+  Workspace ws;
   const int dim = index.dimension();
   const Vec3 normal = dim == 2 ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
   auto s = makeSurface(v, index, params(h));
@@ -88,7 +91,7 @@ void checkStaysNormal(const PointIndex& index, double h, Variant v, std::initial
     {
       const double z = zh * h;
       const Vec3 x = dim == 2 ? Vec3(offset * h, z, 0) : Vec3(offset * h, 0, z);
-      const Direction d = s->direction(x);
+      const Direction d = s->direction(x, ws);
       // At 100h the analytic n_I stability is 1.5 h^2/z^2 = 1.5e-4, next to the default
       // minStability 1e-4, so 'defined' is only required up to 10h (stability >= 1.5e-2 there).
       if (std::abs(zh) <= 10)
@@ -165,6 +168,7 @@ TEST(Direction, IntegralAndDeltaStayNormal3D)
 // angular tolerance of its Newton iteration).
 TEST(Direction, DirectionNearAgreesWithDirectionFromScratch)
 {
+  Workspace ws;
   const double R = 10.0;
   const double h = 1.0;
   PointIndex index(sphereCap(R, 0.6, 0.15 * h), 3);
@@ -177,9 +181,9 @@ TEST(Direction, DirectionNearAgreesWithDirectionFromScratch)
   {
     const auto s = makeSurface(v, index, params);
     DirectionMemory memory;
-    s->directionNear(first, memory);
-    const Direction warm = s->directionNear(second, memory);
-    const Direction cold = s->direction(second);
+    s->directionNear(first, memory, ws);
+    const Direction warm = s->directionNear(second, memory, ws);
+    const Direction cold = s->direction(second, ws);
     // 1 - |cos| of the angle between them: 1e-12 is an angle of 1.4e-6.
     const double tolerance = v == Variant::Integral ? 1e-12 : 1e-14;
     ASSERT_TRUE(warm.defined) << variantName(v);

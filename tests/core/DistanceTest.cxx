@@ -16,6 +16,7 @@ namespace
 
 void checkUpperBound(int dim, unsigned seed)
 {
+  Workspace ws;
   const double h = 0.7;
   const std::vector<Vec3> cloud = randomBox(150, dim, 6 * h, seed);
   PointIndex index(cloud, dim);
@@ -39,11 +40,11 @@ void checkUpperBound(int dim, unsigned seed)
   for (const Vec3& x : queries)
   {
     const double d2 = bruteNearestSq(cloud, x);
-    const double delta = field.delta(x);
+    const double delta = field.delta(x, ws);
     ASSERT_TRUE(std::isfinite(delta)) << x.transpose();
     EXPECT_GE(delta, d2 * (1 - 1e-12) - 1e-300) << "at " << x.transpose();
     Vec3 grad;
-    const double delta2 = field.deltaAndGradient(x, grad);
+    const double delta2 = field.deltaAndGradient(x, ws, grad);
     EXPECT_DOUBLE_EQ(delta2, delta);
     EXPECT_TRUE(isFinite(grad)) << x.transpose();
   }
@@ -54,13 +55,14 @@ void checkUpperBound(int dim, unsigned seed)
 void checkFarRatio(const std::vector<Vec3>& cloud, int dim, double h, const Vec3& foot, const Vec3& dir,
   double expectedExcess)
 {
+  Workspace ws;
   PointIndex index(cloud, dim);
   DistanceField field(index, params(h));
   for (double D : { 20.0, 50.0, 100.0 })
   {
     const Vec3 x = foot + D * h * dir;
     const double d2 = bruteNearestSq(cloud, x);
-    const double delta = field.delta(x);
+    const double delta = field.delta(x, ws);
     const double ratio = delta / d2;
     std::cout << "[ far      ] dim " << dim << " D = " << D << "h: delta/d^2 - 1 = " << ratio - 1
               << ", (delta - d^2)/h^2 = " << (delta - d2) / (h * h) << "\n";
@@ -118,6 +120,7 @@ TEST(DistanceField, FarFieldTendsToSquaredDistanceCircle2D)
 // because every definition is a weighted sum/integral of squares.
 TEST(FarField, AllVariantsFiniteAt100h)
 {
+  Workspace ws;
   struct Case
   {
     std::vector<Vec3> cloud;
@@ -140,7 +143,7 @@ TEST(FarField, AllVariantsFiniteAt100h)
       for (const Vec3& x : c.queries)
       {
         SCOPED_TRACE(std::string(variantName(v)) + " dim " + std::to_string(c.dim));
-        const Direction d = s->direction(x);
+        const Direction d = s->direction(x, ws);
         EXPECT_TRUE(isFinite(d.n)) << x.transpose();
         EXPECT_TRUE(std::isfinite(d.stability));
         EXPECT_GE(d.stability, 0.0);
@@ -152,7 +155,7 @@ TEST(FarField, AllVariantsFiniteAt100h)
         std::mt19937 rng(5);
         for (const Vec3& a : { Vec3(d.defined ? d.n : Vec3(1, 0, 0)), randomUnit(rng, c.dim) })
         {
-          const double e = s->energy(x, a);
+          const double e = s->energy(x, a, ws);
           EXPECT_TRUE(std::isfinite(e)) << x.transpose();
           EXPECT_GE(e, 0.0);
           // The plane-distance energies are exactly 0 when every point that carries weight lies
@@ -174,7 +177,7 @@ TEST(FarField, AllVariantsFiniteAt100h)
           {
             EXPECT_GT(e, 0.0) << "normalized energies cannot underflow at 100h";
           }
-          const LineSample ls = s->lineSample(x, a);
+          const LineSample ls = s->lineSample(x, a, ws);
           EXPECT_TRUE(std::isfinite(ls.value));
           EXPECT_TRUE(std::isfinite(ls.slope));
           EXPECT_TRUE(std::isfinite(ls.logScale));
@@ -187,7 +190,7 @@ TEST(FarField, AllVariantsFiniteAt100h)
             EXPECT_GT(ls.value, 0.0) << "the shifted Levin value must keep its digits";
           }
         }
-        const ImplicitSample is = evaluateImplicit(*s, x, Orientation::awayFromCentroid(index));
+        const ImplicitSample is = evaluateImplicit(*s, x, Orientation::awayFromCentroid(index), ws);
         EXPECT_TRUE(std::isfinite(is.g));
         EXPECT_TRUE(std::isfinite(is.energy));
         EXPECT_TRUE(std::isfinite(is.curvature));

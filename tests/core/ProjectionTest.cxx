@@ -90,6 +90,7 @@ std::vector<Vec3> makeStarts(const Sphereish& g, int count, unsigned seed)
 double projectAndCheck(const Sphereish& g, Variant v, Procedure proc, const std::vector<Vec3>& starts,
   double bound)
 {
+  Workspace ws;
   PointIndex index(g.cloud, g.dim);
   auto s = makeSurface(v, index, params(g.h));
   ProjectionOptions opt;
@@ -98,7 +99,7 @@ double projectAndCheck(const Sphereish& g, Variant v, Procedure proc, const std:
   double sum = 0, minOff = 1e300, maxOff = -1e300;
   for (const Vec3& x0 : starts)
   {
-    const ProjectionResult r = project(*s, x0, opt);
+    const ProjectionResult r = project(*s, x0, opt, ws);
     const double radial = (r.point - g.centre).norm() - g.R;
     SCOPED_TRACE(std::string(variantName(v)) + (proc == Procedure::Plane ? " plane" : " extremal") +
       " start offset " + std::to_string(((x0 - g.centre).norm() - g.R) / g.h) + "h");
@@ -114,8 +115,8 @@ double projectAndCheck(const Sphereish& g, Variant v, Procedure proc, const std:
     EXPECT_LT((u1 - u0).norm() * g.R, 0.01 * g.h) << "slid along the surface";
     if (proc == Procedure::Extremal)
     {
-      const ImplicitSample is = evaluateImplicit(*s, r.point, orient);
-      const ImplicitSample is0 = evaluateImplicit(*s, x0, orient);
+      const ImplicitSample is = evaluateImplicit(*s, r.point, orient, ws);
+      const ImplicitSample is0 = evaluateImplicit(*s, x0, orient, ws);
       EXPECT_TRUE(is.direction.defined);
       EXPECT_GT(is.curvature, 0.0);
       EXPECT_LT(std::abs(is.g / is.curvature), 1e-4 * g.h)

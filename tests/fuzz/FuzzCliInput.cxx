@@ -94,9 +94,10 @@ void Project(const std::vector<pss::Vec3>& cloud)
   }
   pss::ProjectionOptions options;
   options.maxIterations = 8;
+  pss::Workspace ws;
   for (std::size_t i = 0; i < cloud.size() && i < 4; ++i)
   {
-    const pss::ProjectionResult r = pss::project(*surface, cloud[i], options);
+    const pss::ProjectionResult r = pss::project(*surface, cloud[i], options, ws);
     PSS_FUZZ_CHECK((r.reason == pss::StopReason::InvalidInput) == !pss::isFinite(cloud[i]));
   }
 }

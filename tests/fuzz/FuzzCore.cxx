@@ -285,20 +285,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const pss::Orientation orientation = pss::Orientation::awayFromCentroid(index);
   const pss::DistanceField field(index, params);
   pss::DomainThresholds thresholds;
+  pss::Workspace ws; // one for every query below, as a caller's loop would keep it
   for (const Vec3& x : starts)
   {
     const bool finiteStart = pss::isFinite(x);
     if (finiteStart)
     {
-      const pss::Direction d = surface->direction(x);
+      const pss::Direction d = surface->direction(x, ws);
       if (representable)
       {
         CheckDirection(d, params.minStability);
-        PSS_FUZZ_CHECK(!std::isnan(field.delta(x)) && field.delta(x) >= 0.0);
-        PSS_FUZZ_CHECK(!std::isnan(surface->energy(x, d.n.squaredNorm() > 0.0 ? d.n : Vec3(1, 0, 0))));
+        PSS_FUZZ_CHECK(!std::isnan(field.delta(x, ws)) && field.delta(x, ws) >= 0.0);
+        PSS_FUZZ_CHECK(!std::isnan(surface->energy(x, d.n.squaredNorm() > 0.0 ? d.n : Vec3(1, 0, 0), ws)));
       }
     }
-    const pss::ImplicitSample sample = pss::evaluateImplicit(*surface, x, orientation);
+    const pss::ImplicitSample sample = pss::evaluateImplicit(*surface, x, orientation, ws);
     if (representable)
     {
       CheckDirection(sample.direction, params.minStability);
@@ -313,7 +314,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       PSS_FUZZ_CHECK(sample.g == 0.0 && sample.curvature == 0.0 && sample.type == pss::ExtremumType::None);
     }
 
-    const pss::ProjectionResult r = pss::project(*surface, x, options);
+    const pss::ProjectionResult r = pss::project(*surface, x, options, ws);
     PSS_FUZZ_CHECK((r.reason == pss::StopReason::InvalidInput) == !finiteStart);
     PSS_FUZZ_CHECK(r.converged == (r.reason == pss::StopReason::Converged));
     PSS_FUZZ_CHECK(r.iterations >= 0 && r.iterations <= options.maxIterations);
@@ -331,7 +332,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       PSS_FUZZ_CHECK(std::isfinite(r.lastStep));
     }
 
-    const pss::DomainEvidence ev = pss::classifyStart(*surface, x, options, thresholds);
+    const pss::DomainEvidence ev = pss::classifyStart(*surface, x, options, thresholds, ws);
     PSS_FUZZ_CHECK(SameResult(ev.projection, r)); // the same projection, whatever ran before it
     if (ev.projection.converged)
     {
@@ -354,7 +355,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::vector<pss::ProjectionResult> single;
     for (const Vec3& x : starts)
     {
-      single.push_back(pss::project(*surface, x, options));
+      single.push_back(pss::project(*surface, x, options, ws));
     }
     for (int threads : { 1, 2 })
     {

@@ -15,4 +15,6 @@
 #include "pss/SurfaceMesh.h"
 #include "pss/SyntheticClouds.h"
 #include "pss/Types.h"
+#include "pss/VariantTable.h"
 #include "pss/Variants.h"
+#include "pss/Workspace.h"

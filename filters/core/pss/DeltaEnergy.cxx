@@ -5,17 +5,15 @@ namespace pss
 {
 
 DeltaEnergy::DeltaEnergy(const PointIndex& index, const SurfaceParameters& params)
-  : SurfaceDefinition(index, params)
-  , Directions(index, params)
-  , Field(index, params)
+  : Field(index, params)
 {
 }
 
-LineSample DeltaEnergy::lineSample(const Vec3& y, const Vec3& a) const
+LineSample DeltaEnergy::lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const
 {
   Vec3 gradient;
   LineSample out;
-  out.value = Field.deltaAndGradient(y, gradient, &out.nearestSqDist);
+  out.value = Field.deltaAndGradient(y, ws, gradient, &out.nearestSqDist);
   out.slope = a.dot(gradient);
   return out;
 }

@@ -2,6 +2,7 @@
 #include "pss/Domain.h"
 
 #include "pss/Kernel.h"
+#include "pss/Workspace.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,11 +51,11 @@ double unorientedAngleDegrees(const Vec3& a, const Vec3& b)
   return std::acos(c) * 180.0 / M_PI;
 }
 
-Direction cloudNormalAt(const SurfaceDefinition& s, std::size_t point)
+Direction cloudNormalAt(const SurfaceDefinition& s, std::size_t point, Workspace& ws)
 {
   // The weighted total-least-squares plane of the point's neighbours.
-  thread_local Neighbourhood nb;
-  gatherNeighbourhood(s.index(), s.parameters(), s.index().point(point), nb);
+  Neighbourhood& nb = ws.local;
+  gatherNeighbourhood(s.index(), s.parameters(), s.index().point(point), nb, ws);
   return smallestEigenDirection(covarianceAboutCentroid(nb), s.dimension(), s.parameters().minStability);
 }
 
@@ -69,14 +70,14 @@ CloudNormals::CloudNormals(const SurfaceDefinition& s)
   }
 }
 
-Direction CloudNormals::at(std::size_t point) const
+Direction CloudNormals::at(std::size_t point, Workspace& ws) const
 {
   std::atomic<std::uint8_t>& state = State[point];
   if (state.load(std::memory_order_acquire) == 2)
   {
     return Normal[point];
   }
-  const Direction d = cloudNormalAt(Surface, point);
+  const Direction d = cloudNormalAt(Surface, point, ws);
   std::uint8_t expected = 0;
   // Only the thread that claims the slot writes it; one that finds it being written keeps its own
   // copy (the same value).
@@ -89,10 +90,10 @@ Direction CloudNormals::at(std::size_t point) const
 }
 
 DomainEvidence classifyStart(const SurfaceDefinition& s, const Vec3& start, const ProjectionOptions& options,
-  const DomainThresholds& thresholds, const CloudNormals* normals)
+  const DomainThresholds& thresholds, Workspace& ws, const CloudNormals* normals)
 {
   DomainEvidence ev;
-  ev.projection = project(s, start, options);
+  ev.projection = project(s, start, options, ws);
   const ProjectionResult& r = ev.projection;
   ev.startStability = r.startDirection.stability;
   switch (r.reason)
@@ -115,7 +116,7 @@ DomainEvidence classifyStart(const SurfaceDefinition& s, const Vec3& start, cons
   ev.startAngle = unorientedAngleDegrees(r.startDirection.n, r.direction.n);
 
   // The cloud's own normal where the projection landed, at the nearest cloud point.
-  const Direction cloudNormal = normals ? normals->at(nearest.first) : cloudNormalAt(s, nearest.first);
+  const Direction cloudNormal = normals ? normals->at(nearest.first, ws) : cloudNormalAt(s, nearest.first, ws);
   ev.normalAngle = unorientedAngleDegrees(r.direction.n, cloudNormal.n);
 
   const bool far = ev.distanceToCloud > thresholds.maxDistance * s.h();

@@ -66,7 +66,8 @@ class CloudNormals
 {
 public:
   explicit CloudNormals(const SurfaceDefinition& s);
-  Direction at(std::size_t point) const;
+  /// The normal at cloud point @p point (computed in @p ws when not yet kept).
+  Direction at(std::size_t point, Workspace& ws) const;
 
 private:
   const SurfaceDefinition& Surface;
@@ -76,12 +77,12 @@ private:
 };
 
 /// The cloud's own normal at cloud point @p point, uncached.
-Direction cloudNormalAt(const SurfaceDefinition& s, std::size_t point);
+Direction cloudNormalAt(const SurfaceDefinition& s, std::size_t point, Workspace& ws);
 
 /// Projects @p start with @p options and labels the outcome (see the file comment). @p normals,
 /// when given, must be of @p s's cloud: the cloud's normals are then taken from it.
 DomainEvidence classifyStart(const SurfaceDefinition& s, const Vec3& start, const ProjectionOptions& options,
-  const DomainThresholds& thresholds, const CloudNormals* normals = nullptr);
+  const DomainThresholds& thresholds, Workspace& ws, const CloudNormals* normals = nullptr);
 
 /// Unoriented angle between two directions, in degrees within [0, 90].
 double unorientedAngleDegrees(const Vec3& a, const Vec3& b);

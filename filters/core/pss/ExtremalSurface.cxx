@@ -53,15 +53,15 @@ void commonScale(const ScaledSlope& a, const ScaledSlope& b, double& fa, double&
 // Second derivative of t -> e(x + t n, n) at 0, expressed at the scale of @p at (multiply by
 // exp(at.logScale) for the true value): the definition's own when it has one, else a central
 // difference of the analytic slope.
-double scaledCurvature(const SurfaceDefinition& s, const Vec3& x, const Vec3& n, const LineSample& at)
+double scaledCurvature(const SurfaceDefinition& s, const Vec3& x, const Vec3& n, const LineSample& at, Workspace& ws)
 {
   if (!std::isnan(at.curvature))
   {
     return at.curvature;
   }
   const double eps = 1e-4 * s.h();
-  const LineSample plus = s.lineSample(x + eps * n, n);
-  const LineSample minus = s.lineSample(x - eps * n, n);
+  const LineSample plus = s.lineSample(x + eps * n, n, ws);
+  const LineSample minus = s.lineSample(x - eps * n, n, ws);
   const double sp = plus.slope * std::exp(plus.logScale - at.logScale);
   const double sm = minus.slope * std::exp(minus.logScale - at.logScale);
   return (sp - sm) / (2.0 * eps);
@@ -78,7 +78,7 @@ ExtremumType typeFromCurvature(double curvature)
 
 } // namespace
 
-ImplicitSample evaluateImplicit(const SurfaceDefinition& s, const Vec3& xIn, const Orientation& o)
+ImplicitSample evaluateImplicit(const SurfaceDefinition& s, const Vec3& xIn, const Orientation& o, Workspace& ws)
 {
   ImplicitSample out;
   if (!isFinite(xIn))
@@ -86,7 +86,7 @@ ImplicitSample evaluateImplicit(const SurfaceDefinition& s, const Vec3& xIn, con
     return out;
   }
   const Vec3 x = s.index().restrict(xIn);
-  out.direction = s.direction(x);
+  out.direction = s.direction(x, ws);
   if (!out.direction.n.allFinite() || out.direction.n.squaredNorm() == 0.0)
   {
     out.direction.defined = false;
@@ -94,7 +94,7 @@ ImplicitSample evaluateImplicit(const SurfaceDefinition& s, const Vec3& xIn, con
   }
   const Vec3 n = o.apply(out.direction.n, x);
   out.direction.n = n;
-  const LineSample at = s.lineSample(x, n);
+  const LineSample at = s.lineSample(x, n, ws);
   const double scale = std::exp(at.logScale);
   out.energy = at.value * scale;
   if (!out.direction.defined)
@@ -102,14 +102,14 @@ ImplicitSample evaluateImplicit(const SurfaceDefinition& s, const Vec3& xIn, con
     return out; // n(x) is not unique: g and curvature 0, type None (see the header)
   }
   out.g = at.slope * scale;
-  const double curvature = scaledCurvature(s, x, n, at);
+  const double curvature = scaledCurvature(s, x, n, at, ws);
   out.curvature = curvature * scale;
   out.type = typeFromCurvature(curvature);
   return out;
 }
 
 LineExtremum nearestExtremumOnLine(
-  const SurfaceDefinition& s, const Vec3& x, const Vec3& a, bool seekMaximum, double maxTravel)
+  const SurfaceDefinition& s, const Vec3& x, const Vec3& a, bool seekMaximum, double maxTravel, Workspace& ws)
 {
   LineExtremum out;
   // Seeking a maximum of e is seeking a minimum of -e: flip the derivatives' signs once, here.
@@ -117,7 +117,7 @@ LineExtremum nearestExtremumOnLine(
   const ExtremumType wanted = seekMaximum ? ExtremumType::Maximum : ExtremumType::Minimum;
   const double h = s.h();
   auto sample = [&](double t) {
-    const LineSample ls = s.lineSample(x + t * a, a);
+    const LineSample ls = s.lineSample(x + t * a, a, ws);
     ScaledSlope p;
     p.t = t;
     p.mantissa = sign * ls.slope;
@@ -143,8 +143,8 @@ LineExtremum nearestExtremumOnLine(
   }
   else if (start.mantissa == 0.0)
   {
-    const LineSample at = s.lineSample(x, a);
-    if (sign * scaledCurvature(s, x, a, at) > 0.0)
+    const LineSample at = s.lineSample(x, a, ws);
+    if (sign * scaledCurvature(s, x, a, at, ws) > 0.0)
     {
       out.found = true;
       out.type = wanted;
@@ -271,7 +271,7 @@ void ProjectionOptions::validate() const
   }
 }
 
-ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const ProjectionOptions& opt)
+ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const ProjectionOptions& opt, Workspace& ws)
 {
   ProjectionResult res;
   res.point = startIn;
@@ -288,7 +288,9 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   // neighbourhood. Each iterate's fit starts from what the previous one left in memory.
   Vec3 centroid = Vec3::Zero();
   DirectionMemory memory;
-  auto fitAt = [&](const Vec3& p) { return plane ? s.planeFit(p, centroid, memory) : s.directionNear(p, memory); };
+  auto fitAt = [&](const Vec3& p) {
+    return plane ? s.planeFit(p, centroid, memory, ws) : s.directionNear(p, memory, ws);
+  };
   Vec3 fitted = x; // where dir was fitted
   Direction dir = fitAt(x);
   res.startDirection = dir;
@@ -329,7 +331,7 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
     }
     else
     {
-      const LineExtremum le = nearestExtremumOnLine(s, x, dir.n, opt.seekMaxima, opt.maxTravel * h);
+      const LineExtremum le = nearestExtremumOnLine(s, x, dir.n, opt.seekMaxima, opt.maxTravel * h, ws);
       if (!le.found)
       {
         res.reason = StopReason::NoExtremum;
@@ -366,11 +368,11 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   res.converged = res.reason == StopReason::Converged;
   if (dir.n.allFinite() && dir.n.squaredNorm() > 0.0)
   {
-    const LineSample at = s.lineSample(fitted, dir.n);
+    const LineSample at = s.lineSample(fitted, dir.n, ws);
     res.energy = at.trueValue();
     res.type = opt.procedure == Procedure::Extremal && res.converged
       ? lastType
-      : typeFromCurvature(scaledCurvature(s, fitted, dir.n, at));
+      : typeFromCurvature(scaledCurvature(s, fitted, dir.n, at, ws));
   }
   return res;
 }
@@ -380,11 +382,11 @@ void projectEach(const SurfaceDefinition& s, const std::vector<Vec3>& starts, co
 {
   opt.validate();
   const std::vector<std::uint32_t> order = spatialOrder(starts);
-  parallelFor(order.size(), threads, [&](std::size_t begin, std::size_t end) {
+  parallelFor(order.size(), threads, [&](std::size_t begin, std::size_t end, Workspace& ws) {
     for (std::size_t k = begin; k < end; ++k)
     {
       const std::size_t i = order[k];
-      sink(i, project(s, starts[i], opt));
+      sink(i, project(s, starts[i], opt, ws));
     }
   });
 }

@@ -9,6 +9,7 @@
 
 #include "pss/SurfaceDefinition.h"
 #include "pss/Types.h"
+#include "pss/Workspace.h"
 
 #include <functional>
 #include <vector>
@@ -54,7 +55,7 @@ struct ImplicitSample
  * difference (step 1e-4 h) of the analytic slope. When n(x) is undefined, g and curvature are 0
  * and type is None (the flag is direction.defined).
  */
-ImplicitSample evaluateImplicit(const SurfaceDefinition& s, const Vec3& x, const Orientation& o);
+ImplicitSample evaluateImplicit(const SurfaceDefinition& s, const Vec3& x, const Orientation& o, Workspace& ws);
 
 /// Result of searching along a line for the nearest local extremum of e.
 struct LineExtremum
@@ -72,7 +73,7 @@ struct LineExtremum
  * @p maxTravel (absolute distance).
  */
 LineExtremum nearestExtremumOnLine(
-  const SurfaceDefinition& s, const Vec3& x, const Vec3& a, bool seekMaximum, double maxTravel);
+  const SurfaceDefinition& s, const Vec3& x, const Vec3& a, bool seekMaximum, double maxTravel, Workspace& ws);
 
 enum class Procedure : int
 {
@@ -109,14 +110,15 @@ struct ProjectionResult
 };
 
 /// Projects one start point. Never throws for bad points: reports them in the result.
-ProjectionResult project(const SurfaceDefinition& s, const Vec3& start, const ProjectionOptions& opt);
+ProjectionResult project(const SurfaceDefinition& s, const Vec3& start, const ProjectionOptions& opt, Workspace& ws);
 
 /**
  * Projects many start points on @p threads threads (0 = all cores), handing each result to
  * @p sink(i, result) from the worker that computed it (each i exactly once, in no particular
- * order), so callers keep only what they need. The points are visited in spatialOrder(), so
- * consecutive projections share cached neighbours; results do not depend on the order or the
- * thread count: every point is computed independently and in the same way.
+ * order), so callers keep only what they need. Each worker has its own Workspace, and the points
+ * are visited in spatialOrder(), so consecutive projections share cached neighbours; results do
+ * not depend on the order or the thread count: every point is computed independently and in the
+ * same way.
  */
 void projectEach(const SurfaceDefinition& s, const std::vector<Vec3>& starts, const ProjectionOptions& opt,
   int threads, const std::function<void(std::size_t, const ProjectionResult&)>& sink);

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pss/Variants.h"
+#include "pss/Workspace.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -77,7 +78,8 @@ constexpr double AngularTolerance = 1e-9;
 } // namespace
 
 IntegralEnergy::IntegralEnergy(const PointIndex& index, const SurfaceParameters& params)
-  : SurfaceDefinition(index, params)
+  : Index(index)
+  , Params(params)
   , Rule(gaussHermite(params.quadratureOrder))
   , Field(index, params)
 {
@@ -87,7 +89,7 @@ IntegralEnergy::Frame IntegralEnergy::frameOf(const Vec3& a) const
 {
   Frame f;
   f.a = a;
-  if (dimension() == 2)
+  if (Index.dimension() == 2)
   {
     f.b1 = Vec3(-a.y(), a.x(), 0.0);
     f.b2 = Vec3::Zero();
@@ -124,12 +126,13 @@ IntegralEnergy::Frame IntegralEnergy::tilted(const Frame& f, const Eigen::Vector
   return out;
 }
 
-IntegralEnergy::PlaneIntegral IntegralEnergy::integrate(const Vec3& x, const Frame& f, bool derivatives) const
+IntegralEnergy::PlaneIntegral IntegralEnergy::integrate(
+  const Vec3& x, const Frame& f, bool derivatives, Workspace& ws) const
 {
   const double h = Params.h;
   const int p = Params.integrandPower;
   const Vec3 origin = Index.restrict(x);
-  const bool planar = dimension() == 2;
+  const bool planar = Index.dimension() == 2;
   PlaneIntegral out;
   Vec3 gradient;
   // The node at in-plane coordinates (u, v) (units of h) adds weight * delta^p. Its derivative
@@ -137,7 +140,7 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::integrate(const Vec3& x, const Fra
   // node by -eps h u a (the plane pivots about x), so the tilt gradient adds -s h (u, v).
   auto accumulate = [&](double u, double v, double weight) {
     const Vec3 y = origin + h * (u * f.b1 + v * f.b2);
-    const double d = derivatives ? Field.deltaAndGradient(y, gradient) : Field.delta(y);
+    const double d = derivatives ? Field.deltaAndGradient(y, ws, gradient) : Field.delta(y, ws);
     out.value += weight * (p == 2 ? d * d : d);
     if (derivatives)
     {
@@ -151,7 +154,7 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::integrate(const Vec3& x, const Fra
   // the part of the fetch its nodes can need (a node's own gather then scans a few hundred
   // candidates instead of some 1,500).
   const double spread = h * Rule.nodes.back() * (planar ? 1.0 : std::sqrt(2.0));
-  prefetchNeighbourhoods(Index, Params, origin, spread);
+  prefetchNeighbourhoods(Index, Params, origin, spread, ws);
   // Node index ranges: the two halves of the u axis, and of the v axis in 3D (the line has one
   // "v" node, at 0). With one node per axis a half is empty.
   const std::size_t n = Rule.nodes.size();
@@ -172,7 +175,7 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::integrate(const Vec3& x, const Fra
       const double cu = 0.5 * (Rule.nodes[us[0]] + Rule.nodes[us[1] - 1]);
       const double cv = 0.5 * (vAt(vs[0]) + vAt(vs[1] - 1));
       const double corner = std::hypot(Rule.nodes[us[1] - 1] - cu, vAt(vs[1] - 1) - cv);
-      focusNeighbourhoods(Index, Params, origin + h * (cu * f.b1 + cv * f.b2), h * corner);
+      focusNeighbourhoods(Index, Params, origin + h * (cu * f.b1 + cv * f.b2), h * corner, ws);
       for (std::size_t j = us[0]; j < us[1]; ++j)
       {
         for (std::size_t k = vs[0]; k < vs[1]; ++k)
@@ -189,16 +192,16 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::integrate(const Vec3& x, const Fra
   return out;
 }
 
-double IntegralEnergy::energy(const Vec3& y, const Vec3& a) const
+double IntegralEnergy::value(const Vec3& y, const Vec3& a, Workspace& ws) const
 {
-  return integrate(y, frameOf(a), false).value;
+  return integrate(y, frameOf(a), false, ws).value;
 }
 
-LineSample IntegralEnergy::lineSample(const Vec3& y, const Vec3& a) const
+LineSample IntegralEnergy::lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const
 {
   // Moving the plane along its own normal a moves every node by the same t a, so the slope is
   // the quadrature of d(delta^p)/dt = p delta^(p-1) a . grad delta.
-  const PlaneIntegral sums = integrate(y, frameOf(a), true);
+  const PlaneIntegral sums = integrate(y, frameOf(a), true, ws);
   LineSample out;
   out.value = sums.value;
   out.slope = sums.slope;
@@ -206,18 +209,20 @@ LineSample IntegralEnergy::lineSample(const Vec3& y, const Vec3& a) const
   return out;
 }
 
-Direction IntegralEnergy::direction(const Vec3& x) const
+IntegralDirection::IntegralDirection(const PointIndex& index, const SurfaceParameters& params)
+  : Index(index)
+  , Params(params)
+  , Integral(index, params)
 {
-  DirectionMemory none; // nothing to start from: every direction is scanned
-  return directionNear(x, none);
 }
 
-IntegralEnergy::Across IntegralEnergy::leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n, const Vec3* near) const
+IntegralDirection::Across IntegralDirection::leastEnergyOrthogonalTo(
+  const Vec3& x, const Vec3& n, const Vec3* near, Workspace& ws) const
 {
   if (dimension() == 2)
   {
     const Vec3 b(-n.y(), n.x(), 0.0);
-    return { energy(x, b), b };
+    return { Integral.value(x, b, ws), b };
   }
   // Twelve samples of the half circle of directions orthogonal to n (a and -a are the same, so
   // the samples wrap around), then one more at the vertex of the parabola through the best
@@ -229,7 +234,7 @@ IntegralEnergy::Across IntegralEnergy::leastEnergyOrthogonalTo(const Vec3& x, co
   planeBasis(n, b1, b2);
   constexpr int samples = 12;
   const double step = M_PI / samples;
-  auto sampleAt = [&](double phi) { return energy(x, inPlane(b1, b2, phi)); };
+  auto sampleAt = [&](double phi) { return Integral.value(x, inPlane(b1, b2, phi), ws); };
   double centre = 0.0;
   double before = 0.0;
   double best = 0.0;
@@ -268,7 +273,7 @@ IntegralEnergy::Across IntegralEnergy::leastEnergyOrthogonalTo(const Vec3& x, co
   return atVertex < best ? Across{ atVertex, inPlane(b1, b2, vertex) } : Across{ best, inPlane(b1, b2, centre) };
 }
 
-IntegralEnergy::Minimum IntegralEnergy::refineDirection(const Vec3& x, const Vec3& start) const
+IntegralDirection::Minimum IntegralDirection::refineDirection(const Vec3& x, const Vec3& start, Workspace& ws) const
 {
   // Newton's method on the sphere. The gradient is analytic (the tilt sums); the Hessian is a
   // forward difference of it over hessianStep, wide enough that the truncation of the Gaussian
@@ -283,12 +288,16 @@ IntegralEnergy::Minimum IntegralEnergy::refineDirection(const Vec3& x, const Vec
   constexpr double maxTurn = 0.2;
   constexpr double angularTolerance = 1e-8;
   constexpr int maxIterations = 30;
-  Frame f = frameOf(start);
-  PlaneIntegral at = integrate(x, f, true);
+  using Frame = IntegralEnergy::Frame;
+  using PlaneIntegral = IntegralEnergy::PlaneIntegral;
+  Frame f = Integral.frameOf(start);
+  PlaneIntegral at = Integral.integrate(x, f, true, ws);
   for (int it = 0; it < maxIterations && at.tilt.allFinite(); ++it)
   {
-    const PlaneIntegral along1 = integrate(x, tilted(f, Eigen::Vector2d(hessianStep, 0.0)), true);
-    const PlaneIntegral along2 = integrate(x, tilted(f, Eigen::Vector2d(0.0, hessianStep)), true);
+    const PlaneIntegral along1 =
+      Integral.integrate(x, IntegralEnergy::tilted(f, Eigen::Vector2d(hessianStep, 0.0)), true, ws);
+    const PlaneIntegral along2 =
+      Integral.integrate(x, IntegralEnergy::tilted(f, Eigen::Vector2d(0.0, hessianStep)), true, ws);
     Eigen::Matrix2d hessian;
     hessian.col(0) = (along1.tilt - at.tilt) / hessianStep;
     hessian.col(1) = (along2.tilt - at.tilt) / hessianStep;
@@ -315,8 +324,8 @@ IntegralEnergy::Minimum IntegralEnergy::refineDirection(const Vec3& x, const Vec
     bool moved = false;
     for (int halving = 0; halving < 10 && step.norm() >= angularTolerance; ++halving, step *= 0.5)
     {
-      const Frame trialFrame = tilted(f, step);
-      const PlaneIntegral trial = integrate(x, trialFrame, true);
+      const Frame trialFrame = IntegralEnergy::tilted(f, step);
+      const PlaneIntegral trial = Integral.integrate(x, trialFrame, true, ws);
       if (trial.value < at.value)
       {
         f = trialFrame;
@@ -348,14 +357,14 @@ Direction finishDirection(const Vec3& n, double eMin, double ePerp, double minSt
 
 } // namespace
 
-IntegralEnergy::Minimum IntegralEnergy::minimum2D(const Vec3& x, const Vec3* near) const
+IntegralDirection::Minimum IntegralDirection::minimum2D(const Vec3& x, const Vec3* near, Workspace& ws) const
 {
   // Scan the half circle of unoriented directions, then refine the best sample's bracket by
   // golden-section search. From the last iterate's n_I, three samples bracket the minimum
   // when the middle one is the least (else the scan runs).
   constexpr int samples = 36;
   const double step = M_PI / samples;
-  auto energyAt = [&](double phi) { return energy(x, Vec3(std::cos(phi), std::sin(phi), 0.0)); };
+  auto energyAt = [&](double phi) { return Integral.value(x, Vec3(std::cos(phi), std::sin(phi), 0.0), ws); };
   double centre = 0.0;
   bool bracketed = false;
   if (near)
@@ -385,11 +394,11 @@ IntegralEnergy::Minimum IntegralEnergy::minimum2D(const Vec3& x, const Vec3* nea
   return out;
 }
 
-IntegralEnergy::Minimum IntegralEnergy::minimum3D(const Vec3& x, const Vec3* near) const
+IntegralDirection::Minimum IntegralDirection::minimum3D(const Vec3& x, const Vec3* near, Workspace& ws) const
 {
   if (near)
   {
-    return refineDirection(x, *near);
+    return refineDirection(x, *near, ws);
   }
   // Candidates: the 13 directions of a cube's axes, face and body diagonals (every unoriented
   // direction is within 35 degrees of one), plus the centre-of-mass eigenvectors, which are
@@ -412,8 +421,8 @@ IntegralEnergy::Minimum IntegralEnergy::minimum3D(const Vec3& x, const Vec3* nea
     }
   }
   {
-    thread_local Neighbourhood nb;
-    gatherNeighbourhood(Index, Params, x, nb);
+    Neighbourhood& nb = ws.local;
+    gatherNeighbourhood(Index, Params, x, nb, ws);
     Eigen::SelfAdjointEigenSolver<Mat3> solver(covarianceAboutCentroid(nb));
     for (int c = 0; c < 3; ++c)
     {
@@ -427,17 +436,17 @@ IntegralEnergy::Minimum IntegralEnergy::minimum3D(const Vec3& x, const Vec3* nea
   double eMin = std::numeric_limits<double>::infinity();
   for (const Vec3& c : candidates)
   {
-    const double e = energy(x, c);
+    const double e = Integral.value(x, c, ws);
     if (e < eMin)
     {
       eMin = e;
       n = c;
     }
   }
-  return refineDirection(x, n);
+  return refineDirection(x, n, ws);
 }
 
-Direction IntegralEnergy::directionNear(const Vec3& x, DirectionMemory& memory) const
+DirectionFit IntegralDirection::fit(const Vec3& x, DirectionMemory& memory, Workspace& ws) const
 {
   // The last n_I is where the search starts only while the iterates stay within a tenth of h:
   // n_I turns little over such a step, so the search stays in the same basin, while a longer
@@ -445,14 +454,16 @@ Direction IntegralEnergy::directionNear(const Vec3& x, DirectionMemory& memory) 
   // and gets the full scan.
   constexpr double warmReach = 0.1;
   const bool warm = memory.valid && (x - memory.point).norm() <= warmReach * Params.h;
-  const Minimum least = dimension() == 2 ? minimum2D(x, warm ? &memory.n : nullptr)
-                                         : minimum3D(x, warm ? &memory.n : nullptr);
-  const Across across = leastEnergyOrthogonalTo(x, least.n, warm ? &memory.across : nullptr);
+  const Minimum least = dimension() == 2 ? minimum2D(x, warm ? &memory.n : nullptr, ws)
+                                         : minimum3D(x, warm ? &memory.n : nullptr, ws);
+  const Across across = leastEnergyOrthogonalTo(x, least.n, warm ? &memory.across : nullptr, ws);
   memory.valid = least.n.allFinite() && across.direction.allFinite();
   memory.point = x;
   memory.n = least.n;
   memory.across = across.direction;
-  return finishDirection(least.n, least.value, across.value, Params.minStability);
+  // No neighbourhood of x to hand on: only a cold 3D search gathers one (in Workspace::local,
+  // where a plane fit's own gather of x then finds it).
+  return { finishDirection(least.n, least.value, across.value, Params.minStability), nullptr };
 }
 
 } // namespace pss

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pss/Kernel.h"
 
+#include "pss/Workspace.h"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -404,176 +406,152 @@ const KernelTable& kernels()
   return table;
 }
 
-// The candidates of a thread's last k-d tree query: absolute coordinates, ordered by index.
-struct CandidateCache
-{
-  std::uint64_t indexSerial = 0; // 0: empty
-  double h = 0.0;
-  double band = 0.0;
-  Vec3 center = Vec3::Zero();
-  double centerMinDist = 0.0;
-  double radius = 0.0;
-  Eigen::ArrayXd px, py, pz;
-  Eigen::Index count = 0;
-  bool reusable = false; // the fetched ball is exact, so later queries may rely on it
-
-  // True when every point within sqrt(dmin(y)^2 + band) of y is among the candidates:
-  // dmin(y) <= centerMinDist + |y - center|, and that ball around y lies in the fetched one.
-  // (With @p extra > 0: for every query within extra of y.)
-  bool covers(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, double extra = 0.0) const
-  {
-    if (!reusable || indexSerial != index.serial() || h != params.h ||
-      band != params.cutoff * params.cutoff * h * h)
-    {
-      return false;
-    }
-    const double shift = (y - center).norm() + extra;
-    const double reach = centerMinDist + shift;
-    return std::sqrt(reach * reach + band) + shift <= radius;
-  }
-
-  // Fetches the candidates around y with a margin of at least @p minMargin.
-  void fetch(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, double minMargin = 0.0)
-  {
-    indexSerial = index.serial();
-    h = params.h;
-    band = params.cutoff * params.cutoff * h * h;
-    center = y;
-    const auto nearest = index.nearest(y);
-    centerMinDist = std::sqrt(nearest.second);
-    const double margin = std::max({ 0.5 * h, std::min(0.05 * centerMinDist, 2.0 * h), minMargin });
-    const double reach = centerMinDist + margin;
-    radius = std::sqrt(reach * reach + band) + margin;
-    const double sqRadius = radius * radius;
-    // The leaves come in index order, so the candidates do too: every later neighbourhood is
-    // then independent of where this fetch was made. (The count and the arrays are locals in
-    // the loop: this object is thread-local, and in a shared library every access to one costs
-    // a call.)
-    Eigen::Index n = 0;
-    index.forEachLeafInBall(y, sqRadius, [&](std::uint32_t begin, std::uint32_t end) {
-      reserve(n + (end - begin));
-      double* x = px.data();
-      double* yy = py.data();
-      double* z = pz.data();
-      for (std::uint32_t i = begin; i < end; ++i)
-      {
-        const Vec3& p = index.point(i);
-        x[n] = p.x();
-        yy[n] = p.y();
-        z[n] = p.z();
-        n += (p - y).squaredNorm() < sqRadius ? 1 : 0;
-      }
-    });
-    count = n;
-    // The ball holds every point within radius only while the squared distances are finite.
-    reusable = count > 0 && std::isfinite(sqRadius);
-    if (count == 0)
-    {
-      // Only when the radius rounds below the nearest distance (absurd scale ratios, or squared
-      // distances beyond double's range). Such candidates are good for this query alone: reusing
-      // them for the next one made results depend on which query came first (found by
-      // tests/fuzz/FuzzCore.cxx: 1 vs 2 threads differed for a start 1e300 from the cloud).
-      reserve(1);
-      const Vec3& p = index.point(nearest.first);
-      px[0] = p.x();
-      py[0] = p.y();
-      pz[0] = p.z();
-      count = 1;
-    }
-  }
-
-  // |p - y|^2 for the first count candidates, into out (resized when short); returns them.
-  auto squaredDistances(const Vec3& y, Eigen::ArrayXd& out) const
-  {
-    if (out.size() < count)
-    {
-      out.resize(count);
-    }
-    auto sq = out.head(count);
-    sq = (px.head(count) - y.x()).square() + (py.head(count) - y.y()).square() + (pz.head(count) - y.z()).square();
-    return sq;
-  }
-
-  // Fills this cache with the candidates of @p wider (which must cover every query within
-  // @p reach of @p c) that any such query can need: the same guarantee as a fetch at c with
-  // margin reach, from a scan of wider's candidates instead of a k-d tree query.
-  void focus(const CandidateCache& wider, const Vec3& c, double reach)
-  {
-    indexSerial = wider.indexSerial;
-    h = wider.h;
-    band = wider.band;
-    center = c;
-    const Eigen::Index m = wider.count;
-    thread_local Eigen::ArrayXd sq;
-    centerMinDist = std::sqrt(wider.squaredDistances(c, sq).minCoeff());
-    const double outer = centerMinDist + reach;
-    radius = std::sqrt(outer * outer + band) + reach;
-    const double sqRadius = radius * radius;
-    reserve(m);
-    const double* wx = wider.px.data();
-    const double* wy = wider.py.data();
-    const double* wz = wider.pz.data();
-    const double* ds = sq.data();
-    double* x = px.data();
-    double* y = py.data();
-    double* z = pz.data();
-    Eigen::Index n = 0;
-    for (Eigen::Index i = 0; i < m; ++i)
-    {
-      x[n] = wx[i];
-      y[n] = wy[i];
-      z[n] = wz[i];
-      n += ds[i] < sqRadius ? 1 : 0;
-    }
-    count = n;
-    reusable = wider.reusable && n > 0 && std::isfinite(sqRadius);
-  }
-
-  // Room for @p n candidates, keeping the first count.
-  void reserve(Eigen::Index n)
-  {
-    if (px.size() < n)
-    {
-      const Eigen::Index capacity = std::max<Eigen::Index>(n, 2 * px.size());
-      px.conservativeResize(capacity);
-      py.conservativeResize(capacity);
-      pz.conservativeResize(capacity);
-    }
-  }
-};
-
-thread_local CandidateCache ThreadCache;
-// A subset of ThreadCache's candidates for a smaller region (see focusNeighbourhoods).
-thread_local CandidateCache FocusCache;
-
 } // namespace
 
-void prefetchNeighbourhoods(const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach)
+// True when every point within sqrt(dmin(y)^2 + band) of y is among the candidates:
+// dmin(y) <= centerMinDist + |y - center|, and that ball around y lies in the fetched one.
+bool CandidateCache::covers(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, double extra) const
+{
+  if (!reusable || indexSerial != index.serial() || h != params.h || band != params.cutoff * params.cutoff * h * h)
+  {
+    return false;
+  }
+  const double shift = (y - center).norm() + extra;
+  const double reach = centerMinDist + shift;
+  return std::sqrt(reach * reach + band) + shift <= radius;
+}
+
+void CandidateCache::fetch(const PointIndex& index, const SurfaceParameters& params, const Vec3& y,
+  PointIndex::LeafRanges& leaves, double minMargin)
+{
+  indexSerial = index.serial();
+  h = params.h;
+  band = params.cutoff * params.cutoff * h * h;
+  center = y;
+  const auto nearest = index.nearest(y);
+  centerMinDist = std::sqrt(nearest.second);
+  const double margin = std::max({ 0.5 * h, std::min(0.05 * centerMinDist, 2.0 * h), minMargin });
+  const double reach = centerMinDist + margin;
+  radius = std::sqrt(reach * reach + band) + margin;
+  const double sqRadius = radius * radius;
+  // The leaves come in index order, so the candidates do too: every later neighbourhood is
+  // then independent of where this fetch was made. (The count and the arrays are locals in
+  // the loop, which keeps them in registers.)
+  Eigen::Index n = 0;
+  index.forEachLeafInBall(y, sqRadius, leaves, [&](std::uint32_t begin, std::uint32_t end) {
+    reserve(n + (end - begin));
+    double* x = px.data();
+    double* yy = py.data();
+    double* z = pz.data();
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      const Vec3& p = index.point(i);
+      x[n] = p.x();
+      yy[n] = p.y();
+      z[n] = p.z();
+      n += (p - y).squaredNorm() < sqRadius ? 1 : 0;
+    }
+  });
+  count = n;
+  // The ball holds every point within radius only while the squared distances are finite.
+  reusable = count > 0 && std::isfinite(sqRadius);
+  if (count == 0)
+  {
+    // Only when the radius rounds below the nearest distance (absurd scale ratios, or squared
+    // distances beyond double's range). Such candidates are good for this query alone: reusing
+    // them for the next one made results depend on which query came first (found by
+    // tests/fuzz/FuzzCore.cxx: 1 vs 2 threads differed for a start 1e300 from the cloud).
+    reserve(1);
+    const Vec3& p = index.point(nearest.first);
+    px[0] = p.x();
+    py[0] = p.y();
+    pz[0] = p.z();
+    count = 1;
+  }
+}
+
+Eigen::VectorBlock<Eigen::ArrayXd> CandidateCache::squaredDistances(const Vec3& y, Eigen::ArrayXd& out) const
+{
+  if (out.size() < count)
+  {
+    out.resize(count);
+  }
+  auto sq = out.head(count);
+  sq = (px.head(count) - y.x()).square() + (py.head(count) - y.y()).square() + (pz.head(count) - y.z()).square();
+  return sq;
+}
+
+// The same guarantee as a fetch at c with margin reach, from a scan of wider's candidates
+// instead of a k-d tree query.
+void CandidateCache::focus(const CandidateCache& wider, const Vec3& c, double reach, Eigen::ArrayXd& sq)
+{
+  indexSerial = wider.indexSerial;
+  h = wider.h;
+  band = wider.band;
+  center = c;
+  const Eigen::Index m = wider.count;
+  centerMinDist = std::sqrt(wider.squaredDistances(c, sq).minCoeff());
+  const double outer = centerMinDist + reach;
+  radius = std::sqrt(outer * outer + band) + reach;
+  const double sqRadius = radius * radius;
+  reserve(m);
+  const double* wx = wider.px.data();
+  const double* wy = wider.py.data();
+  const double* wz = wider.pz.data();
+  const double* ds = sq.data();
+  double* x = px.data();
+  double* y = py.data();
+  double* z = pz.data();
+  Eigen::Index n = 0;
+  for (Eigen::Index i = 0; i < m; ++i)
+  {
+    x[n] = wx[i];
+    y[n] = wy[i];
+    z[n] = wz[i];
+    n += ds[i] < sqRadius ? 1 : 0;
+  }
+  count = n;
+  reusable = wider.reusable && n > 0 && std::isfinite(sqRadius);
+}
+
+void CandidateCache::reserve(Eigen::Index n)
+{
+  if (px.size() < n)
+  {
+    const Eigen::Index capacity = std::max<Eigen::Index>(n, 2 * px.size());
+    px.conservativeResize(capacity);
+    py.conservativeResize(capacity);
+    pz.conservativeResize(capacity);
+  }
+}
+
+void prefetchNeighbourhoods(
+  const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach, Workspace& ws)
 {
   const Vec3 c = index.restrict(center);
-  if (!ThreadCache.covers(index, params, c, reach))
+  if (!ws.wide.covers(index, params, c, reach))
   {
     // Half an h of slack beyond the reach asked for, so that nearby centres (the steps of a
     // projection, the samples of a line search) reuse the same fetch.
-    ThreadCache.fetch(index, params, c, reach + 0.5 * params.h);
+    ws.wide.fetch(index, params, c, ws.leaves, reach + 0.5 * params.h);
   }
 }
 
-void focusNeighbourhoods(const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach)
+void focusNeighbourhoods(
+  const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach, Workspace& ws)
 {
   const Vec3 c = index.restrict(center);
-  if (FocusCache.covers(index, params, c, reach))
+  if (ws.focused.covers(index, params, c, reach))
   {
     return;
   }
-  prefetchNeighbourhoods(index, params, c, reach);
-  FocusCache.focus(ThreadCache, c, reach);
+  prefetchNeighbourhoods(index, params, c, reach, ws);
+  ws.focused.focus(ws.wide, c, reach, ws.focusSq);
 }
 
-void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, Neighbourhood& nb)
+void gatherNeighbourhood(
+  const PointIndex& index, const SurfaceParameters& params, const Vec3& y, Neighbourhood& nb, Workspace& ws)
 {
-  thread_local Eigen::ArrayXd candidateSq;
-
   const Vec3 origin = index.restrict(y);
   if (nb.indexSerial == index.serial() && nb.h == params.h && nb.cutoff == params.cutoff && nb.origin == origin)
   {
@@ -584,16 +562,16 @@ void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& param
   nb.invH2 = 1.0 / (params.h * params.h);
   // Either cache holds, in index order, every point the neighbourhood can need, so which one
   // serves the query does not change a bit of the result.
-  const bool focused = FocusCache.covers(index, params, nb.origin);
-  CandidateCache& cache = focused ? FocusCache : ThreadCache;
+  const bool focused = ws.focused.covers(index, params, nb.origin);
+  CandidateCache& cache = focused ? ws.focused : ws.wide;
   if (!focused && !cache.covers(index, params, nb.origin))
   {
-    cache.fetch(index, params, nb.origin);
+    cache.fetch(index, params, nb.origin, ws.leaves);
   }
   const Eigen::Index m = cache.count;
   // Offsets are p - y from absolute coordinates: for large coordinates this subtraction is the
   // only place digits can go, and it is exact to one rounding whatever the cache centre was.
-  const auto sq = cache.squaredDistances(nb.origin, candidateSq);
+  const auto sq = cache.squaredDistances(nb.origin, ws.candidateSq);
   const double minSq = sq.minCoeff();
   nb.resize(m);
   const Eigen::Index n = kernels().compact(cache.px.data(), cache.py.data(), cache.pz.data(), sq.data(), m,
@@ -626,12 +604,6 @@ void expNonPositive(const double* x, double* out, Eigen::Index n)
 const char* kernelInstructionSet()
 {
   return kernels().name;
-}
-
-Neighbourhood& threadNeighbourhood()
-{
-  thread_local Neighbourhood nb;
-  return nb;
 }
 
 Vec3 centroidOffset(const Neighbourhood& nb)
@@ -873,17 +845,17 @@ DistanceField::DistanceField(const PointIndex& index, const SurfaceParameters& p
   }
 }
 
-double DistanceField::delta(const Vec3& y) const
+double DistanceField::delta(const Vec3& y, Workspace& ws) const
 {
-  thread_local Neighbourhood nb;
-  gatherNeighbourhood(Index, Params, y, nb);
+  Neighbourhood& nb = ws.field;
+  gatherNeighbourhood(Index, Params, y, nb, ws);
   return approximateSqDistance(nb);
 }
 
-double DistanceField::deltaAndGradient(const Vec3& y, Vec3& gradient, double* nearestSqDist) const
+double DistanceField::deltaAndGradient(const Vec3& y, Workspace& ws, Vec3& gradient, double* nearestSqDist) const
 {
-  thread_local Neighbourhood nb;
-  gatherNeighbourhood(Index, Params, y, nb);
+  Neighbourhood& nb = ws.field;
+  gatherNeighbourhood(Index, Params, y, nb, ws);
   if (nearestSqDist)
   {
     *nearestSqDist = nb.minSqDist;

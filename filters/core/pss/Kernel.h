@@ -31,6 +31,8 @@
 namespace pss
 {
 
+struct Workspace;
+
 /// Parameters shared by every surface definition.
 struct SurfaceParameters
 {
@@ -88,16 +90,16 @@ struct Neighbourhood
  * Fills @p nb with the neighbourhood of @p y (see the file comment). Requires a non-empty index.
  * Returns at once when @p nb already holds this query (same index, h, cutoff and point).
  *
- * Each thread keeps the candidate points of its last k-d tree query, fetched with a margin
+ * @p ws keeps the candidate points of its last k-d tree query, fetched with a margin
  * (half of h, or a twentieth of the distance to the cloud if larger, up to 2 h: far from the
- * cloud a wider margin would hold much of the cloud, per thread). A later query
+ * cloud a wider margin would hold much of the cloud, per workspace). A later query
  * within that margin of the last fetch is answered from the candidates, which provably contain
  * its whole neighbourhood: the nearest point is at most dmin + delta away, so every point within
  * sqrt((dmin + delta)^2 + (cutoff h)^2) of y lies inside the fetched ball. Iterations of a
- * projection and samples along a line thus rarely touch the tree.
+ * projection and samples along a line thus rarely touch the tree. @p nb may be one of @p ws's.
  */
 void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y,
-  Neighbourhood& nb);
+  Neighbourhood& nb, Workspace& ws);
 
 /**
  * out[i] = exp(x[i]) for x[i] <= 0, several at a time: within one ulp of std::exp on [-708, 0],
@@ -111,28 +113,23 @@ void expNonPositive(const double* x, double* out, Eigen::Index n);
 const char* kernelInstructionSet();
 
 /**
- * The calling thread's shared Neighbourhood, for evaluations that gather and then only read it
- * (no nested gather while they use it). Sharing it lets consecutive evaluations at the same point,
- * such as a projection's last plane fit and the energy at its end point, gather once.
+ * Makes @p ws's candidates (see gatherNeighbourhood) cover every query within @p reach of
+ * @p center, with at most one k-d tree query. For evaluations that spread over a known region,
+ * such as the quadrature nodes of e_I, so they do not each query the tree. The fetch reaches h/2
+ * further, so that a centre moved by less than that is still covered.
  */
-Neighbourhood& threadNeighbourhood();
+void prefetchNeighbourhoods(
+  const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach, Workspace& ws);
 
 /**
- * Makes the calling thread's candidates (see gatherNeighbourhood) cover every query within
- * @p reach of @p center, with at most one k-d tree query. For evaluations that spread over a known
- * region, such as the quadrature nodes of e_I, so they do not each query the tree. The fetch
- * reaches h/2 further, so that a centre moved by less than that is still covered.
+ * Like prefetchNeighbourhoods, for a smaller region inside a prefetched one: keeps, in @p ws's
+ * second candidate cache, just the prefetched candidates that queries within @p reach of
+ * @p center can need, so that each of them scans those instead of the whole prefetch. e_I calls
+ * it for each quarter of its quadrature nodes. Neighbourhoods are the same bit for bit whichever
+ * cache serves them.
  */
-void prefetchNeighbourhoods(const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach);
-
-/**
- * Like prefetchNeighbourhoods, for a smaller region inside a prefetched one: keeps, in a second
- * per-thread cache, just the prefetched candidates that queries within @p reach of @p center can
- * need, so that each of them scans those instead of the whole prefetch. e_I calls it for each
- * quarter of its quadrature nodes. Neighbourhoods are the same bit for bit whichever cache
- * serves them.
- */
-void focusNeighbourhoods(const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach);
+void focusNeighbourhoods(
+  const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach, Workspace& ws);
 
 /// c(y) - y, where c(y) = sum_i theta_N(y, p_i) p_i is the weighted centre of mass.
 Vec3 centroidOffset(const Neighbourhood& nb);
@@ -181,15 +178,15 @@ double approximateSqDistance(const Neighbourhood& nb);
  */
 Vec3 approximateSqDistanceGradient(const Neighbourhood& nb, double delta);
 
-/// delta(y) and its gradient evaluated straight from the index (convenience for callers and tests).
+/// delta(y) and its gradient evaluated straight from the index, in @p ws's delta neighbourhood.
 class DistanceField
 {
 public:
   DistanceField(const PointIndex& index, const SurfaceParameters& params);
-  double delta(const Vec3& y) const;
+  double delta(const Vec3& y, Workspace& ws) const;
   /// delta and grad delta at once (the gradient needs delta anyway); optionally the squared
   /// distance from y to the nearest cloud point.
-  double deltaAndGradient(const Vec3& y, Vec3& gradient, double* nearestSqDist = nullptr) const;
+  double deltaAndGradient(const Vec3& y, Workspace& ws, Vec3& gradient, double* nearestSqDist = nullptr) const;
 
 private:
   const PointIndex& Index;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pss/Parallel.h"
 
+#include "pss/Workspace.h"
+
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -23,6 +25,13 @@ int resolveThreadCount(int requested)
 
 void parallelFor(std::size_t n, int threads, const std::function<void(std::size_t, std::size_t)>& body)
 {
+  // An empty workspace allocates nothing: unused, it costs nothing.
+  parallelFor(n, threads, [&](std::size_t begin, std::size_t end, Workspace&) { body(begin, end); });
+}
+
+void parallelFor(
+  std::size_t n, int threads, const std::function<void(std::size_t, std::size_t, Workspace&)>& body)
+{
   if (n == 0)
   {
     return;
@@ -30,7 +39,8 @@ void parallelFor(std::size_t n, int threads, const std::function<void(std::size_
   const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(resolveThreadCount(threads)), n);
   if (workers <= 1)
   {
-    body(0, n);
+    Workspace ws;
+    body(0, n, ws);
     return;
   }
   // Small chunks handed out on demand balance uneven per-point cost (projections far from the
@@ -42,9 +52,10 @@ void parallelFor(std::size_t n, int threads, const std::function<void(std::size_
   auto work = [&]() {
     try
     {
+      Workspace ws;
       for (std::size_t begin = next.fetch_add(chunk); begin < n; begin = next.fetch_add(chunk))
       {
-        body(begin, std::min(n, begin + chunk));
+        body(begin, std::min(n, begin + chunk), ws);
       }
     }
     catch (...)

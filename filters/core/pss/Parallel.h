@@ -11,6 +11,8 @@
 namespace pss
 {
 
+struct Workspace;
+
 /// Number of threads meant by @p requested: itself when > 0, all hardware threads when 0.
 int resolveThreadCount(int requested);
 
@@ -20,5 +22,10 @@ int resolveThreadCount(int requested);
  * results written per index are independent of the thread count.
  */
 void parallelFor(std::size_t n, int threads, const std::function<void(std::size_t, std::size_t)>& body);
+
+/// The same, with a Workspace per worker thread, which every chunk that worker runs is handed
+/// (created empty: what a chunk leaves there only saves the next chunk work).
+void parallelFor(
+  std::size_t n, int threads, const std::function<void(std::size_t, std::size_t, Workspace&)>& body);
 
 } // namespace pss

@@ -340,13 +340,12 @@ std::vector<std::uint32_t> spatialOrder(const std::vector<Vec3>& points)
   return order;
 }
 
-PointIndex::LeafRanges& PointIndex::leavesInBall(const Vec3& x, double sqRadius) const
+void PointIndex::leavesInBall(const Vec3& x, double sqRadius, LeafRanges& ranges) const
 {
-  thread_local LeafRanges ranges;
   ranges.clear();
   if (Points.empty())
   {
-    return ranges;
+    return;
   }
   const Vec3 q = restrict(x);
   Impl->visit([&](const auto& tree) {
@@ -369,7 +368,6 @@ PointIndex::LeafRanges& PointIndex::leavesInBall(const Vec3& x, double sqRadius)
         nanoflann_internals::rootNode(tree), q.data(), sqRadius, boxSqDist, dist, ranges);
     }
   });
-  return ranges;
 }
 
 } // namespace pss

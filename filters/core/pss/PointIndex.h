@@ -4,7 +4,7 @@
  * @brief A k-d tree (nanoflann) over a point cloud in 2D (xy-plane) or 3D.
  *
  * Built once, then queried concurrently from any number of threads: every query is const and
- * keeps its scratch space on the caller's side.
+ * keeps its scratch space on the caller's side (forEachLeafInBall takes it as an argument).
  *
  * Points with a NaN or infinite coordinate are not indexed; skippedCount() says how many were
  * dropped. The indexed points are stored in the tree's leaf order (spatially coherent), so index
@@ -63,18 +63,23 @@ public:
   /// All points with squared distance to @p x strictly below @p sqRadius, unsorted.
   void withinSqRadius(const Vec3& x, double sqRadius, std::vector<std::pair<std::uint32_t, double>>& out) const;
 
+  /// The leaf ranges forEachLeafInBall collects: its caller's scratch, kept between queries so
+  /// that its capacity is reused.
+  using LeafRanges = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
   /**
    * Calls @p visit(begin, end) for ranges of consecutive indices, in ascending order, that
    * together hold every point with squared distance to @p x strictly below @p sqRadius (and may
    * hold a few more: the caller filters). The ranges are the tree's leaves whose bounding boxes
    * reach the ball; since points are stored in leaf order, visiting leaves left to right gives
-   * indices already sorted, which spares the caller a sort.
+   * indices already sorted, which spares the caller a sort. The ranges are collected in
+   * @p scratch (its contents before the call do not matter).
    */
   template <class Visit>
-  void forEachLeafInBall(const Vec3& x, double sqRadius, Visit&& visit) const
+  void forEachLeafInBall(const Vec3& x, double sqRadius, LeafRanges& scratch, Visit&& visit) const
   {
-    LeafRanges& ranges = leavesInBall(x, sqRadius);
-    for (const auto& r : ranges)
+    leavesInBall(x, sqRadius, scratch);
+    for (const auto& r : scratch)
     {
       visit(r.first, r.second);
     }
@@ -82,9 +87,8 @@ public:
 
 private:
   struct Tree;
-  using LeafRanges = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
-  /// The leaves for forEachLeafInBall, in a per-thread buffer.
-  LeafRanges& leavesInBall(const Vec3& x, double sqRadius) const;
+  /// The leaves for forEachLeafInBall, into @p ranges.
+  void leavesInBall(const Vec3& x, double sqRadius, LeafRanges& ranges) const;
   int Dimension;
   std::vector<Vec3> Points;
   std::vector<std::size_t> OriginalIds;

@@ -1,60 +1,77 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pss/SurfaceDefinition.h"
 
-#include "pss/Variants.h"
+#include "pss/VariantTable.h"
+#include "pss/Workspace.h"
 
 #include <stdexcept>
 
 namespace pss
 {
 
-SurfaceDefinition::SurfaceDefinition(const PointIndex& index, const SurfaceParameters& params)
-  : Index(index)
-  , Params(params)
+namespace
 {
-  Params.validate();
-  if (Index.empty())
+
+// The parameters, once checked: the rules are built from them, so the checks come first.
+const SurfaceParameters& validated(const SurfaceParameters& params, const PointIndex& index)
+{
+  params.validate();
+  if (index.empty())
   {
     throw std::invalid_argument("the point cloud is empty (no finite points)");
   }
+  return params;
 }
 
-double SurfaceDefinition::energy(const Vec3& y, const Vec3& a) const
+} // namespace
+
+double Energy::value(const Vec3& y, const Vec3& a, Workspace& ws) const
 {
-  return lineSample(y, a).trueValue();
+  return lineSample(y, a, ws).trueValue();
 }
 
-Direction SurfaceDefinition::directionNear(const Vec3& x, DirectionMemory&) const
+SurfaceDefinition::SurfaceDefinition(
+  const VariantInfo& recipe, const PointIndex& index, const SurfaceParameters& params)
+  : Index(index)
+  , Params(validated(params, index))
+  , Kind(recipe.variant)
+  , Directions(recipe.direction(Index, Params))
+  , Energies(recipe.energy(Index, Params))
 {
-  return direction(x);
 }
 
-Direction SurfaceDefinition::planeFit(const Vec3& x, Vec3& offset, DirectionMemory& memory) const
+Direction SurfaceDefinition::direction(const Vec3& x, Workspace& ws) const
 {
-  thread_local Neighbourhood nb;
-  const Direction d = directionNear(x, memory);
-  gatherNeighbourhood(Index, Params, x, nb);
-  offset = centroidOffset(nb);
-  return d;
+  DirectionMemory none; // no earlier fit: a cold start
+  return Directions->fit(x, none, ws).direction;
 }
 
-std::unique_ptr<SurfaceDefinition> makeSurface(
-  Variant v, const PointIndex& index, const SurfaceParameters& params)
+Direction SurfaceDefinition::directionNear(const Vec3& x, DirectionMemory& memory, Workspace& ws) const
 {
-  switch (v)
+  return Directions->fit(x, memory, ws).direction;
+}
+
+LineSample SurfaceDefinition::lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const
+{
+  return Energies->lineSample(y, a, ws);
+}
+
+double SurfaceDefinition::energy(const Vec3& y, const Vec3& a, Workspace& ws) const
+{
+  return Energies->value(y, a, ws);
+}
+
+Direction SurfaceDefinition::planeFit(const Vec3& x, Vec3& offset, DirectionMemory& memory, Workspace& ws) const
+{
+  const DirectionFit fit = Directions->fit(x, memory, ws);
+  const Neighbourhood* nb = fit.neighbourhood;
+  if (!nb)
   {
-    case Variant::LevinMLS:
-      return std::make_unique<LevinMLS>(index, params);
-    case Variant::NormalizedMLS:
-      return std::make_unique<NormalizedMLS>(index, params);
-    case Variant::CenterOfMass:
-      return std::make_unique<CenterOfMass>(index, params);
-    case Variant::Integral:
-      return std::make_unique<IntegralEnergy>(index, params);
-    case Variant::Delta:
-      return std::make_unique<DeltaEnergy>(index, params);
+    gatherNeighbourhood(Index, Params, x, ws.local, ws);
+    nb = &ws.local;
   }
-  throw std::invalid_argument("unknown surface variant " + std::to_string(static_cast<int>(v)));
+  offset = centroidOffset(*nb);
+  return fit.direction;
 }
 
 } // namespace pss

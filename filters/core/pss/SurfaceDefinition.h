@@ -1,12 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file SurfaceDefinition.h
- * @brief The interface every point-set surface definition implements: a direction field n(x)
- *        and an energy e(y, a), the two ingredients of an extremal surface (Definition 1).
+ * @brief A point-set surface definition: a direction rule n(x) composed with an energy e(y, a),
+ *        the two ingredients of an extremal surface (Definition 1).
  *
+ * The paper's five definitions are the rows of a product table (Variants.h): three direction
+ * rules (the smallest eigenvector of the covariance about x, or about the weighted centre of mass,
+ * or the argmin of e_I over directions) and four energies (Eq. 1, its normalized form, e_I, delta).
  * Everything else (the implicit function g of Eq. 2, projection to minima or maxima, domain
- * classification, field sampling) is written once against this interface in ExtremalSurface.h.
- * Adding a definition (APSS, RIMLS, ...) means one new subclass and one Variant value.
+ * classification, field sampling) is written once against SurfaceDefinition in
+ * ExtremalSurface.h. Adding a definition (APSS, RIMLS, ...) means a new rule or energy where the
+ * existing ones do not serve, one Variant value and one row of variantTable().
+ *
+ * Every evaluation takes the caller's Workspace (Workspace.h); none keeps state of its own.
  */
 #pragma once
 
@@ -19,71 +25,106 @@
 namespace pss
 {
 
+struct Workspace;
+struct VariantInfo;
+
 /**
  * What one iterate of a projection leaves for the direction at the next (see
  * SurfaceDefinition::directionNear). Start each projection with a default-constructed one.
  */
 struct DirectionMemory
 {
-  EigenFrame frame;           ///< eigenvector definitions: the last fit's eigenvectors
-  bool valid = false;         ///< direction-search definitions (n_I): the fields below are set
+  EigenFrame frame;           ///< eigenvector rules: the last fit's eigenvectors
+  bool valid = false;         ///< direction-search rules (n_I): the fields below are set
   Vec3 point = Vec3::Zero();  ///< where the last n was found
   Vec3 n = Vec3::Zero();      ///< that n
   Vec3 across = Vec3::Zero(); ///< the least-energy direction orthogonal to it (for the stability)
 };
 
+/// A direction with the neighbourhood of x it was fitted from, for rules that fit one.
+struct DirectionFit
+{
+  Direction direction;
+  /// x's neighbourhood, in the workspace given to the fit (valid until that workspace's next
+  /// use), or nullptr when the rule gathered none it could hand on (n_I).
+  const Neighbourhood* neighbourhood = nullptr;
+};
+
+/// n(x): how a definition picks the direction of the line along which it minimizes its energy.
+class DirectionRule
+{
+public:
+  virtual ~DirectionRule() = default;
+  /**
+   * n(x) for an iterate that follows, closely, one whose direction filled @p memory (a
+   * projection's steps; a default-constructed memory for a cold start): eigenvector rules start
+   * their decomposition from the last eigenvectors (same result to rounding); n_I starts its
+   * search from the last n_I instead of scanning every direction. Updates @p memory.
+   */
+  virtual DirectionFit fit(const Vec3& x, DirectionMemory& memory, Workspace& ws) const = 0;
+};
+
+/// e(y, a): the energy whose minima along the line of n define the surface.
+class Energy
+{
+public:
+  virtual ~Energy() = default;
+  /**
+   * e(y, a) and d/dt e(y + t a, a) at t = 0 (a fixed, the weights moving with y); @p a a unit
+   * vector (z = 0 in 2D).
+   */
+  virtual LineSample lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const = 0;
+  /// e(y, a) at its true scale (may underflow to 0 for Levin's, never NaN). The default takes
+  /// it from lineSample; energies whose slope costs extra override it.
+  virtual double value(const Vec3& y, const Vec3& a, Workspace& ws) const;
+};
+
 class SurfaceDefinition
 {
 public:
-  /// Throws std::invalid_argument when @p index is empty or @p params are invalid.
-  SurfaceDefinition(const PointIndex& index, const SurfaceParameters& params);
-  virtual ~SurfaceDefinition() = default;
+  /// The definition of @p recipe's row over @p index. Throws std::invalid_argument when @p index
+  /// is empty or @p params are invalid.
+  SurfaceDefinition(const VariantInfo& recipe, const PointIndex& index, const SurfaceParameters& params);
   SurfaceDefinition(const SurfaceDefinition&) = delete;
   SurfaceDefinition& operator=(const SurfaceDefinition&) = delete;
 
-  virtual Variant variant() const = 0;
+  Variant variant() const { return Kind; }
 
-  /// n(x): the unoriented direction with its stability. Thread-safe.
-  virtual Direction direction(const Vec3& x) const = 0;
+  /// n(x): the unoriented direction with its stability.
+  Direction direction(const Vec3& x, Workspace& ws) const;
 
-  /**
-   * n(x) for an iterate that follows, closely, one whose direction filled @p memory (a
-   * projection's steps): eigenvector definitions start their decomposition from the last
-   * eigenvectors (same result to rounding); IntegralEnergy starts its search for n_I from the
-   * last n_I instead of scanning every direction (see its class comment). Updates @p memory.
-   * The default ignores it and calls direction().
-   */
-  virtual Direction directionNear(const Vec3& x, DirectionMemory& memory) const;
+  /// n(x) continuing from what an earlier iterate left in @p memory (see DirectionRule::fit).
+  Direction directionNear(const Vec3& x, DirectionMemory& memory, Workspace& ws) const;
 
-  /**
-   * e(y, a) and d/dt e(y + t a, a) at t = 0 (a fixed, the weights moving with y). @p a must be a
-   * unit vector (z = 0 in 2D). Thread-safe.
-   */
-  virtual LineSample lineSample(const Vec3& y, const Vec3& a) const = 0;
+  /// See Energy::lineSample.
+  LineSample lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const;
 
   /// e(y, a) at its true scale (may underflow to 0 for LevinMLS, never NaN).
-  virtual double energy(const Vec3& y, const Vec3& a) const;
+  double energy(const Vec3& y, const Vec3& a, Workspace& ws) const;
 
   /**
    * n(x) and c(x) - x, the offset of the normalized-weight centre of mass: what one step of the
-   * plane procedure needs. The default takes n from directionNear() and gathers the
-   * neighbourhood a second time; definitions whose n comes from the same weighted neighbourhood
-   * override it to gather once. @p memory carries what one iterate's fit leaves for the next.
+   * plane procedure needs. Rules that fit x's neighbourhood hand it on, so both come from one
+   * gather; for the others x's neighbourhood is gathered once more. @p memory as in
+   * directionNear.
    */
-  virtual Direction planeFit(const Vec3& x, Vec3& centroidOffset, DirectionMemory& memory) const;
+  Direction planeFit(const Vec3& x, Vec3& centroidOffset, DirectionMemory& memory, Workspace& ws) const;
 
   const PointIndex& index() const { return Index; }
   const SurfaceParameters& parameters() const { return Params; }
   int dimension() const { return Index.dimension(); }
   double h() const { return Params.h; }
 
-protected:
+private:
   const PointIndex& Index;
   const SurfaceParameters Params;
+  const Variant Kind;
+  const std::unique_ptr<const DirectionRule> Directions;
+  const std::unique_ptr<const Energy> Energies;
 };
 
-/// Factory: the definition named by @p v over @p index. Throws like the constructor.
-std::unique_ptr<SurfaceDefinition> makeSurface(
-  Variant v, const PointIndex& index, const SurfaceParameters& params);
+/// The definition named by @p v: variantTable()'s row for it (defined in Variants.cxx). Throws
+/// like the constructor, and std::invalid_argument for a value outside the table.
+std::unique_ptr<SurfaceDefinition> makeSurface(Variant v, const PointIndex& index, const SurfaceParameters& params);
 
 } // namespace pss

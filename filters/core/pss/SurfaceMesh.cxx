@@ -304,16 +304,16 @@ void SurfaceMesher::buildBand()
   Statistics.gridVertices = Keys.size();
 }
 
-void SurfaceMesher::evaluateVertex(std::size_t i)
+void SurfaceMesher::evaluateVertex(std::size_t i, Workspace& ws)
 {
   const Vec3 x = positionOf(Keys[i]);
-  const Direction d = Surface.direction(x);
+  const Direction d = Surface.direction(x, ws);
   CornerValue& v = Values[i];
   v.defined = d.defined;
   if (d.defined)
   {
     v.n = d.n;
-    v.g = Surface.lineSample(x, d.n).trueSlope();
+    v.g = Surface.lineSample(x, d.n, ws).trueSlope();
     v.defined = std::isfinite(v.g);
   }
 }
@@ -553,9 +553,9 @@ void SurfaceMesher::contour()
   Values = {};
 }
 
-void SurfaceMesher::classifyCrossing(std::size_t i)
+void SurfaceMesher::classifyCrossing(std::size_t i, Workspace& ws)
 {
-  Evidence[i] = classifyStart(Surface, Crossings[i].point, Options.projection, Options.domain, &Normals);
+  Evidence[i] = classifyStart(Surface, Crossings[i].point, Options.projection, Options.domain, ws, &Normals);
 }
 
 namespace
@@ -756,7 +756,7 @@ void countTopology(SurfaceMesh& mesh)
     : static_cast<long long>(nv) - static_cast<long long>(cells);
 }
 
-SurfaceMesh SurfaceMesher::finish()
+SurfaceMesh SurfaceMesher::finish(Workspace& ws)
 {
   SurfaceMesh mesh;
   mesh.dimension = Dimension;
@@ -848,7 +848,7 @@ SurfaceMesh SurfaceMesher::finish()
   mesh.crossings = std::move(crossing);
   mesh.evidence = std::move(Evidence);
   Crossings = {};
-  closeSmallHoles(mesh);
+  closeSmallHoles(mesh, ws);
   mesh.statistics = Statistics;
   countTopology(mesh);
   return mesh;
@@ -901,7 +901,7 @@ std::vector<std::vector<std::uint32_t>> SurfaceMesher::smallHoles(const SurfaceM
   return holes;
 }
 
-void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh)
+void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
 {
   if (Dimension != 3 || Options.maxHoleEdges < 3)
   {
@@ -931,7 +931,7 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh)
     }
     else
     {
-      ev = classifyStart(Surface, centre, Options.projection, Options.domain, &Normals);
+      ev = classifyStart(Surface, centre, Options.projection, Options.domain, ws, &Normals);
       const Direction& d = ev.projection.direction;
       if (ev.label != DomainLabel::InDomain || (ev.projection.point - centre).norm() > Options.maxVertexTravel * Cell ||
         !d.defined)
@@ -979,10 +979,10 @@ SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptio
   };
   SurfaceMesher mesher(surface, options);
   lap(t.band);
-  parallelFor(mesher.gridVertexCount(), threads, [&](std::size_t begin, std::size_t end) {
+  parallelFor(mesher.gridVertexCount(), threads, [&](std::size_t begin, std::size_t end, Workspace& ws) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      mesher.evaluateVertex(i);
+      mesher.evaluateVertex(i, ws);
     }
   });
   lap(t.corners);
@@ -990,14 +990,15 @@ SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptio
   lap(t.orient);
   mesher.contour();
   lap(t.contour);
-  parallelFor(mesher.crossingCount(), threads, [&](std::size_t begin, std::size_t end) {
+  parallelFor(mesher.crossingCount(), threads, [&](std::size_t begin, std::size_t end, Workspace& ws) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      mesher.classifyCrossing(i);
+      mesher.classifyCrossing(i, ws);
     }
   });
   lap(t.projection);
-  SurfaceMesh mesh = mesher.finish();
+  Workspace ws;
+  SurfaceMesh mesh = mesher.finish(ws);
   lap(t.finish);
   return mesh;
 }

@@ -119,7 +119,7 @@ struct SurfaceMesh
  * std::invalid_argument with the cell count when it is absurd), then call evaluateVertex() for
  * every index below gridVertexCount(), orient(), contour(), classifyCrossing() for every index
  * below crossingCount(), and finish(). The two loops may run on any number of threads (distinct
- * indices); the other stages are sequential and cheap.
+ * indices, a Workspace per thread); the other stages are sequential and cheap.
  */
 class SurfaceMesher
 {
@@ -127,12 +127,12 @@ public:
   SurfaceMesher(const SurfaceDefinition& surface, const MeshOptions& options);
 
   std::size_t gridVertexCount() const { return Keys.size(); }
-  void evaluateVertex(std::size_t i);
+  void evaluateVertex(std::size_t i, Workspace& ws);
   void orient();
   void contour();
   std::size_t crossingCount() const { return Crossings.size(); }
-  void classifyCrossing(std::size_t i);
-  SurfaceMesh finish();
+  void classifyCrossing(std::size_t i, Workspace& ws);
+  SurfaceMesh finish(Workspace& ws);
 
 private:
   using Key = std::uint64_t;
@@ -160,7 +160,7 @@ private:
   bool isUnfolded(const Vec3& face, const Vec3& vertexNormals) const;
   /// The simple border loops of @p mesh of at most maxHoleEdges edges, each in its triangles' winding.
   std::vector<std::vector<std::uint32_t>> smallHoles(const SurfaceMesh& mesh) const;
-  void closeSmallHoles(SurfaceMesh& mesh);
+  void closeSmallHoles(SurfaceMesh& mesh, Workspace& ws);
 
   const SurfaceDefinition& Surface;
   MeshOptions Options;

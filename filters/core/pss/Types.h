@@ -32,9 +32,11 @@ enum class Variant : int
 
 constexpr int VariantCount = 5;
 
-/// Canonical lower-case name: "levin", "normalized", "com", "integral", "delta".
+/// Canonical lower-case name: "levin", "normalized", "com", "integral", "delta" (from
+/// variantTable(), VariantTable.h).
 const char* variantName(Variant v);
-/// Parses canonical names and the enum spellings ("LevinMLS", ...); returns false if unknown.
+/// Parses the table's canonical names and enum spellings ("LevinMLS", ...), ignoring case, '-',
+/// '_' and ' ', and "mls" for Levin's; returns false if unknown.
 bool parseVariant(const std::string& text, Variant& out);
 
 /// Kind of critical point of t -> e(x + t n, n) at t = 0 (the sign of its second derivative).

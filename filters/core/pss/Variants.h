@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Variants.h
- * @brief The five surface definitions of the paper. Construct them through makeSurface() or
- *        directly; all share SurfaceDefinition's contract (thread-safe, const queries).
+ * @brief The direction rules and energies the paper's five definitions are composed of
+ *        (VariantTable.h says which definition takes which). Each is a small value over the
+ *        cloud's index and the parameters; its state lives in the caller's Workspace.
  */
 #pragma once
 
@@ -14,50 +15,63 @@ namespace pss
 {
 
 /**
- * @brief Levin's MLS surface (Eq. 1 with the plain Gaussian theta).
- *
- * e(y, a) = sum_i theta(y, p_i) <a, p_i - y>^2 = a^T C(y) a, n = smallest eigenvector of C(y),
- * C about the query point y (not the centroid). The energy is reported at its true scale, which
- * is tiny and flat far from the cloud: that is the paper's point about this definition.
- */
-class LevinMLS : public SurfaceDefinition
-{
-public:
-  using SurfaceDefinition::SurfaceDefinition;
-  Variant variant() const override { return Variant::LevinMLS; }
-  Direction direction(const Vec3& x) const override;
-  LineSample lineSample(const Vec3& y, const Vec3& a) const override;
-  Direction directionNear(const Vec3& x, DirectionMemory& memory) const override;
-  Direction planeFit(const Vec3& x, Vec3& centroidOffset, DirectionMemory& memory) const override;
-};
-
-/**
- * @brief Eq. 1 with normalized weights theta_N (Alexa et al., Sec. 4).
- *
- * Same n as LevinMLS (a positive factor does not move an argmin), hence the inheritance; the
- * energy is a weighted mean of squared plane distances, so it grows away from the cloud instead
- * of fading out.
- */
-class NormalizedMLS : public LevinMLS
-{
-public:
-  using LevinMLS::LevinMLS;
-  Variant variant() const override { return Variant::NormalizedMLS; }
-  LineSample lineSample(const Vec3& y, const Vec3& a) const override;
-};
-
-/**
- * @brief n_COM: the normal of the total-least-squares plane through the weighted centre of mass
- *        c(x) (Sec. 5, PointShop3D's heuristic); the energy is NormalizedMLS's.
+ * @brief The smallest eigenvector of a weighted covariance of x's neighbourhood: about x itself
+ *        (Levin's C(x) of Eq. 1; normalizing the weights divides it by a positive number, which
+ *        moves no eigenvector, so the normalized MLS has the same n) or about the weighted centre
+ *        of mass c(x) (n_COM, Sec. 5, PointShop3D's heuristic).
  *
  * The paper prints <a, x> in the n_COM formula; the plane passes through c, so we use <a, c>.
+ * The fit hands on x's neighbourhood (Workspace::query), so a plane step gets c(x) without a
+ * second gather.
  */
-class CenterOfMass : public NormalizedMLS
+class CovarianceDirection : public DirectionRule
 {
 public:
-  using NormalizedMLS::NormalizedMLS;
-  Variant variant() const override { return Variant::CenterOfMass; }
-  Direction directionNear(const Vec3& x, DirectionMemory& memory) const override;
+  enum class About
+  {
+    Query,   ///< C(x) = sum_i theta(x, p_i)(p_i - x)(p_i - x)^T
+    Centroid ///< sum_i theta_N(x, p_i)(p_i - c(x))(p_i - c(x))^T
+  };
+  CovarianceDirection(const PointIndex& index, const SurfaceParameters& params, About about);
+  DirectionFit fit(const Vec3& x, DirectionMemory& memory, Workspace& ws) const override;
+
+private:
+  const PointIndex& Index;
+  const SurfaceParameters Params;
+  const About Centre;
+};
+
+/**
+ * @brief Levin's MLS energy (Eq. 1 with the plain Gaussian theta):
+ *        e(y, a) = sum_i theta(y, p_i) <a, p_i - y>^2 = a^T C(y) a.
+ *
+ * Reported at its true scale, which is tiny and flat far from the cloud: that is the paper's
+ * point about this definition.
+ */
+class MLSEnergy : public Energy
+{
+public:
+  MLSEnergy(const PointIndex& index, const SurfaceParameters& params);
+  LineSample lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const override;
+
+private:
+  const PointIndex& Index;
+  const SurfaceParameters Params;
+};
+
+/**
+ * @brief Eq. 1 with normalized weights theta_N (Alexa et al., Sec. 4): a weighted mean of squared
+ *        plane distances, so it grows away from the cloud instead of fading out.
+ */
+class NormalizedMLSEnergy : public Energy
+{
+public:
+  NormalizedMLSEnergy(const PointIndex& index, const SurfaceParameters& params);
+  LineSample lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const override;
+
+private:
+  const PointIndex& Index;
+  const SurfaceParameters Params;
 };
 
 /**
@@ -67,32 +81,13 @@ public:
  * axis b in 2D), theta(y, x) = exp(-u^2 - v^2) and
  *   e_I ~= h^2 sum_jk w_j w_k delta(y_jk)^p    (3D),    h sum_j w_j delta(y_j)^p    (2D),
  * with the Gauss-Hermite rule of SurfaceParameters::quadratureOrder and p = integrandPower.
- * The slope along the normal is the same sum of p delta^(p-1) a . grad delta.
- *
- * n_I = argmin over unit a of e_I: in 2D a scan of the half circle refined by golden-section
- * search; in 3D the best of a fixed set of candidate directions (13 lattice directions plus the
- * centre-of-mass eigenvectors), refined by Newton's method on the sphere. Tilting the plane by an
- * angle towards an in-plane axis moves each node along a in proportion to its coordinate on that
- * axis, so the tilt gradient is one more sum over the same nodes as the slope (see integrate());
- * the Hessian is a difference of two such gradients. Within a projection (directionNear), an
- * iterate less than h/10 from the last one starts Newton from the last n_I instead of scanning
- * the candidates, and the e_perp search from the last e_perp direction: about half the e_I of
- * a cold search. Such a short step cannot carry n_I far, but where two minima of e_I over
- * directions are nearly equal the warm search keeps following the one it had. Stability is
- * (e_perp - e_min) / (e_perp + e_min), e_perp the least energy over directions orthogonal to n_I:
- * for a quadratic form this is exactly the eigenvalue measure the other variants report.
+ * The slope along the normal is the same sum of p delta^(p-1) a . grad delta; tilting the plane
+ * by an angle towards an in-plane axis moves each node along a in proportion to its coordinate
+ * on that axis, so the tilt gradient is one more sum over the same nodes (see integrate()).
  */
-class IntegralEnergy : public SurfaceDefinition
+class IntegralEnergy : public Energy
 {
 public:
-  IntegralEnergy(const PointIndex& index, const SurfaceParameters& params);
-  Variant variant() const override { return Variant::Integral; }
-  Direction direction(const Vec3& x) const override;
-  Direction directionNear(const Vec3& x, DirectionMemory& memory) const override;
-  LineSample lineSample(const Vec3& y, const Vec3& a) const override;
-  double energy(const Vec3& y, const Vec3& a) const override;
-
-private:
   /// The plane through a point with unit normal a and orthonormal in-plane axes b1, b2 (in 2D
   /// the line with direction b1; b2 is unused).
   struct Frame
@@ -109,6 +104,43 @@ private:
     Eigen::Vector2d tilt = Eigen::Vector2d::Zero();
   };
 
+  IntegralEnergy(const PointIndex& index, const SurfaceParameters& params);
+  LineSample lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const override;
+  double value(const Vec3& y, const Vec3& a, Workspace& ws) const override;
+
+  Frame frameOf(const Vec3& a) const;
+  /// The frame turned by the tangent step (radians, in b1/b2 coordinates), axes carried along.
+  static Frame tilted(const Frame& f, const Eigen::Vector2d& step);
+  PlaneIntegral integrate(const Vec3& x, const Frame& f, bool derivatives, Workspace& ws) const;
+
+private:
+  const PointIndex& Index;
+  const SurfaceParameters Params;
+  GaussHermiteRule Rule;
+  DistanceField Field;
+};
+
+/**
+ * @brief n_I = argmin over unit a of e_I(x, a) (Sec. 5).
+ *
+ * In 2D a scan of the half circle refined by golden-section search; in 3D the best of a fixed set
+ * of candidate directions (13 lattice directions plus the centre-of-mass eigenvectors), refined
+ * by Newton's method on the sphere with the analytic tilt gradient (the Hessian is a difference of
+ * two such gradients). Within a projection (a warm DirectionMemory), an iterate less than h/10
+ * from the last one starts Newton from the last n_I instead of scanning the candidates, and the
+ * e_perp search from the last e_perp direction: about half the e_I of a cold search. Such a short
+ * step cannot carry n_I far, but where two minima of e_I over directions are nearly equal the
+ * warm search keeps following the one it had. Stability is (e_perp - e_min) / (e_perp + e_min),
+ * e_perp the least energy over directions orthogonal to n_I: for a quadratic form this is exactly
+ * the eigenvalue measure the other rules report.
+ */
+class IntegralDirection : public DirectionRule
+{
+public:
+  IntegralDirection(const PointIndex& index, const SurfaceParameters& params);
+  DirectionFit fit(const Vec3& x, DirectionMemory& memory, Workspace& ws) const override;
+
+private:
   /// A direction with the value of e_I there.
   struct Minimum
   {
@@ -122,36 +154,29 @@ private:
     Vec3 direction = Vec3::Zero();
   };
 
-  Frame frameOf(const Vec3& a) const;
-  static Frame tilted(const Frame& f, const Eigen::Vector2d& step);
-  PlaneIntegral integrate(const Vec3& x, const Frame& f, bool derivatives) const;
-  Minimum refineDirection(const Vec3& x, const Vec3& start) const;
+  int dimension() const { return Index.dimension(); }
+  Minimum refineDirection(const Vec3& x, const Vec3& start, Workspace& ws) const;
   /// The searches for n_I and e_perp start near @p near (the last iterate's answer) when given.
-  Across leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n, const Vec3* near) const;
-  Minimum minimum2D(const Vec3& x, const Vec3* near) const;
-  Minimum minimum3D(const Vec3& x, const Vec3* near) const;
+  Across leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n, const Vec3* near, Workspace& ws) const;
+  Minimum minimum2D(const Vec3& x, const Vec3* near, Workspace& ws) const;
+  Minimum minimum3D(const Vec3& x, const Vec3* near, Workspace& ws) const;
 
-  GaussHermiteRule Rule;
-  DistanceField Field;
+  const PointIndex& Index;
+  const SurfaceParameters Params;
+  IntegralEnergy Integral;
 };
 
 /**
- * @brief The delta variant: n = n_I and e(y, a) = delta(y), independent of a (end of Sec. 5).
+ * @brief The approximate squared distance as an energy: e(y, a) = delta(y), independent of a
+ *        (the delta variant, end of Sec. 5).
  */
-class DeltaEnergy : public SurfaceDefinition
+class DeltaEnergy : public Energy
 {
 public:
   DeltaEnergy(const PointIndex& index, const SurfaceParameters& params);
-  Variant variant() const override { return Variant::Delta; }
-  Direction direction(const Vec3& x) const override { return Directions.direction(x); }
-  Direction directionNear(const Vec3& x, DirectionMemory& memory) const override
-  {
-    return Directions.directionNear(x, memory);
-  }
-  LineSample lineSample(const Vec3& y, const Vec3& a) const override;
+  LineSample lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const override;
 
 private:
-  IntegralEnergy Directions;
   DistanceField Field;
 };
 

@@ -28,9 +28,11 @@ int main()
   parameters.h = 1.0;
   auto surface = pss::makeSurface(pss::Variant::CenterOfMass, index, parameters);
   double worst = 0.0;
+  pss::Workspace ws;
   for (int i = 0; i < 50; ++i)
   {
-    const pss::ProjectionResult result = pss::project(*surface, onSphere(radius + (i % 2 ? 1.0 : -1.0)), pss::ProjectionOptions{});
+    const pss::ProjectionResult result =
+      pss::project(*surface, onSphere(radius + (i % 2 ? 1.0 : -1.0)), pss::ProjectionOptions{}, ws);
     if (!result.converged)
     {
       std::printf("projection %d did not converge\n", i);

@@ -1,15 +1,22 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pss/Variants.h"
+#include "pss/Workspace.h"
 
 namespace pss
 {
 
-LineSample NormalizedMLS::lineSample(const Vec3& y, const Vec3& a) const
+NormalizedMLSEnergy::NormalizedMLSEnergy(const PointIndex& index, const SurfaceParameters& params)
+  : Index(index)
+  , Params(params)
 {
-  Neighbourhood& nb = threadNeighbourhood();
-  gatherNeighbourhood(Index, Params, y, nb);
+}
+
+LineSample NormalizedMLSEnergy::lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const
+{
+  Neighbourhood& nb = ws.query;
+  gatherNeighbourhood(Index, Params, y, nb, ws);
   // e = N / W with N = sum w_i s_i^2 and W = sum w_i; quotient rule with the derivatives of
-  // LevinMLS::lineSample, dW/dt = sum w_i 2 s_i / h^2 and d2W/dt2 = sum w_i (4 s_i^2 / h^4 - 2 / h^2).
+  // MLSEnergy::lineSample, dW/dt = sum w_i 2 s_i / h^2 and d2W/dt2 = sum w_i (4 s_i^2 / h^4 - 2 / h^2).
   const LineMoments m = lineMoments(nb, a);
   const double k = nb.invH2;
   const double w = nb.weightSum;

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Workspace.h
+ * @brief The caches and scratch arrays of the core's evaluations, owned by their caller.
+ *
+ * Every evaluation (a direction, an energy sample, a projection, a cloud normal, ...) takes a
+ * Workspace by reference and keeps its neighbourhoods and the candidate points of its last k-d
+ * tree query there, so that consecutive evaluations nearby (the iterates of a projection, the
+ * samples of a line search, the quadrature nodes of e_I) reuse them. What a workspace holds only
+ * ever saves work: a result is bitwise the same with a fresh workspace or with one that served
+ * any other cloud, scale or definition before (tests/core/WorkspaceTest.cxx checks this).
+ *
+ * One workspace serves one thread at a time: a parallel loop gives each worker its own
+ * (pss::parallelFor's workspace overload, or vtkSMPThreadLocal<pss::Workspace> in a VTK functor).
+ * It is a plain value: default-constructed empty (no allocation until first use), copyable and
+ * movable. Its members are the core's business; callers only create, keep and pass it.
+ */
+#pragma once
+
+#include "pss/Kernel.h"
+#include "pss/PointIndex.h"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+
+namespace pss
+{
+
+/**
+ * The candidate points of one k-d tree query (absolute coordinates, ordered by index): every
+ * point that a neighbourhood of any query near the fetch centre can need (see
+ * gatherNeighbourhood). Defined in Kernel.cxx.
+ */
+struct CandidateCache
+{
+  std::uint64_t indexSerial = 0; ///< 0: empty
+  double h = 0.0;
+  double band = 0.0;
+  Vec3 center = Vec3::Zero();
+  double centerMinDist = 0.0;
+  double radius = 0.0;
+  Eigen::ArrayXd px, py, pz;
+  Eigen::Index count = 0;
+  bool reusable = false; ///< the fetched ball is exact, so later queries may rely on it
+
+  /// True when every point within sqrt(dmin(y)^2 + band) of y is among the candidates (with
+  /// @p extra > 0: for every query within extra of y).
+  bool covers(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, double extra = 0.0) const;
+  /// Fetches the candidates around y with a margin of at least @p minMargin.
+  void fetch(const PointIndex& index, const SurfaceParameters& params, const Vec3& y, PointIndex::LeafRanges& leaves,
+    double minMargin = 0.0);
+  /// |p - y|^2 for the first count candidates, into out (resized when short); returns them.
+  Eigen::VectorBlock<Eigen::ArrayXd> squaredDistances(const Vec3& y, Eigen::ArrayXd& out) const;
+  /// The candidates of @p wider (which must cover every query within @p reach of @p c) that any
+  /// such query can need; @p sq is scratch.
+  void focus(const CandidateCache& wider, const Vec3& c, double reach, Eigen::ArrayXd& sq);
+  /// Room for @p n candidates, keeping the first count.
+  void reserve(Eigen::Index n);
+};
+
+struct Workspace
+{
+  /// The neighbourhood of the last covariance fit or MLS energy sample. Shared between them so
+  /// that evaluations at the same point, such as a projection's last plane fit and the energy at
+  /// its end point, gather once.
+  Neighbourhood query;
+  /// The neighbourhood of the last delta evaluation (DistanceField: e_I's quadrature nodes, the
+  /// delta energy), which happen inside other evaluations and must not overwrite query.
+  Neighbourhood field;
+  /// For gathers nested in other evaluations that keep query or field in use (n_I's starting
+  /// candidates, a plane fit's centroid for rules that fit no neighbourhood, cloud normals).
+  Neighbourhood local;
+
+  /// The last k-d tree query's candidates, and a subset of them for a smaller region (see
+  /// focusNeighbourhoods): every gather scans the smaller one that covers it.
+  CandidateCache wide;
+  CandidateCache focused;
+  /// Scratch: candidates' squared distances (gather, focus) and a tree query's leaf ranges.
+  Eigen::ArrayXd candidateSq;
+  Eigen::ArrayXd focusSq;
+  PointIndex::LeafRanges leaves;
+};
+
+} // namespace pss
