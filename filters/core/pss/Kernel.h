@@ -178,7 +178,7 @@ double approximateSqDistance(const Neighbourhood& nb);
  */
 Vec3 approximateSqDistanceGradient(const Neighbourhood& nb, double delta);
 
-/// delta(y) and its gradient evaluated straight from the index, in @p ws's delta neighbourhood.
+/// delta(y) and its gradient evaluated straight from the index, in Workspace::field.
 class DistanceField
 {
 public:
