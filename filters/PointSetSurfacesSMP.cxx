@@ -13,16 +13,11 @@
 namespace pss_vtk
 {
 
-bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType)>& body,
-  double progressBegin, double progressEnd)
+namespace
 {
-  // An empty workspace allocates nothing: unused, it costs nothing.
-  return ParallelFor(
-    algorithm, n, [&](vtkIdType i, pss::Workspace&) { body(i); }, progressBegin, progressEnd);
-}
 
-bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType, pss::Workspace&)>& body,
-  double progressBegin, double progressEnd)
+// The loop behind every other: chunks of the range on vtkSMPTools, each with its thread's workspace.
+bool ForChunks(vtkAlgorithm* algorithm, vtkIdType n, const pss::ChunkBody& body, double progressBegin, double progressEnd)
 {
   if (n <= 0)
   {
@@ -39,11 +34,7 @@ bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(
     {
       return;
     }
-    pss::Workspace& ws = workspaces.Local();
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      body(i, ws);
-    }
+    body(static_cast<std::size_t>(begin), static_cast<std::size_t>(end), workspaces.Local());
     const vtkIdType total = done.fetch_add(end - begin) + (end - begin);
     // When the whole range fits one chunk, vtkSMPTools::For runs it inline, outside any parallel
     // scope, where GetSingleThread() must not be asked (it crashes with VTK 9.2's STDThread).
@@ -58,6 +49,37 @@ bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(
     }
   });
   return !aborted.load();
+}
+
+} // namespace
+
+bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType)>& body,
+  double progressBegin, double progressEnd)
+{
+  // An empty workspace allocates nothing: unused, it costs nothing.
+  return ParallelFor(
+    algorithm, n, [&](vtkIdType i, pss::Workspace&) { body(i); }, progressBegin, progressEnd);
+}
+
+bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType, pss::Workspace&)>& body,
+  double progressBegin, double progressEnd)
+{
+  return ForChunks(
+    algorithm, n,
+    [&](std::size_t begin, std::size_t end, pss::Workspace& ws) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        body(static_cast<vtkIdType>(i), ws);
+      }
+    },
+    progressBegin, progressEnd);
+}
+
+pss::ParallelLoop SMPLoop(vtkAlgorithm* algorithm)
+{
+  return [algorithm](std::size_t n, pss::LoopShare share, const pss::ChunkBody& body) {
+    return ForChunks(algorithm, static_cast<vtkIdType>(n), body, share.first, share.second);
+  };
 }
 
 }

@@ -15,10 +15,7 @@
 
 class vtkAlgorithm;
 
-namespace pss
-{
-struct Workspace;
-}
+#include "pss/Parallel.h"
 
 namespace pss_vtk
 {
@@ -36,6 +33,13 @@ bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(
 /// through vtkSMPThreadLocal, for the loop's duration).
 bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(vtkIdType, pss::Workspace&)>& body,
   double progressBegin = 0.0, double progressEnd = 1.0);
+
+/**
+ * The core's batch entry points (pss::forEachStart, pss::extractSurfaceMesh) run on this loop
+ * inside @p algorithm's RequestData: vtkSMPTools threads, a workspace per thread, progress over
+ * each loop's share of the work, and a stop once AbortExecute is set.
+ */
+pss::ParallelLoop SMPLoop(vtkAlgorithm* algorithm);
 
 }
 

@@ -21,7 +21,7 @@
 #include "pss/SurfaceMesh.h"
 
 #include <chrono>
-#include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -166,48 +166,28 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.projection.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.domain.maxDistance = this->MaxDistance;
   options.domain.maxNormalAngle = this->MaxNormalAngle;
-  std::ostringstream timing;
-  auto lap = [&timing, t0 = std::chrono::steady_clock::now()](const char* stage) mutable {
-    const auto t1 = std::chrono::steady_clock::now();
-    timing << (timing.tellp() > 0 ? ", " : "") << stage << " " << std::chrono::duration<double>(t1 - t0).count() << " s";
-    t0 = t1;
-  };
-  std::unique_ptr<pss::SurfaceMesher> mesher;
+  std::optional<pss::SurfaceMesh> mesh;
+  pss::MeshTimings t;
   try
   {
-    mesher = std::make_unique<pss::SurfaceMesher>(*this->Surface->GetDefinition(), options);
+    mesh = pss::extractSurfaceMesh(*this->Surface->GetDefinition(), options, pss_vtk::SMPLoop(this), &t);
   }
   catch (const std::invalid_argument& e)
   {
     vtkErrorMacro(<< e.what());
     return 0;
   }
-  lap("band");
-  // Progress: the corners' n and g, then the (cheap, sequential) orientation and contouring,
-  // then the projections of the crossings.
-  if (!pss_vtk::ParallelFor(this, static_cast<vtkIdType>(mesher->gridVertexCount()),
-        [&](vtkIdType i, pss::Workspace& ws) { mesher->evaluateVertex(static_cast<std::size_t>(i), ws); }, 0.0,
-        0.45))
+  if (!mesh)
   {
     return 1; // aborted: empty output
   }
-  lap("corners");
-  mesher->orient();
-  lap("orient");
-  mesher->contour();
-  lap("contour");
-  this->UpdateProgress(0.5);
-  if (!pss_vtk::ParallelFor(this, static_cast<vtkIdType>(mesher->crossingCount()),
-        [&](vtkIdType i, pss::Workspace& ws) { mesher->classifyCrossing(static_cast<std::size_t>(i), ws); }, 0.5,
-        0.98))
-  {
-    return 1;
-  }
-  lap("projection");
-  pss::Workspace ws;
-  const pss::SurfaceMesh mesh = mesher->finish(ws);
-  WriteMesh(mesh, output);
-  lap("output");
+  const auto start = std::chrono::steady_clock::now();
+  WriteMesh(*mesh, output);
+  const double write = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::ostringstream timing;
+  timing << "band " << t.band << " s, corners " << t.corners << " s, orient " << t.orient << " s, contour "
+         << t.contour << " s, projection " << t.projection << " s, finish " << t.finish << " s, output " << write
+         << " s";
   this->TimingReport = timing.str();
   pss_vtk::AddSurfaceFieldData(output, this->Surface);
   for (const auto& entry : { std::make_pair("CellSize", this->CellSize), std::make_pair("Band", this->Band) })
@@ -216,7 +196,7 @@ int vtkPointSetSurfaceMesher::RequestData(
     a->SetValue(0, entry.second);
     output->GetFieldData()->AddArray(a);
   }
-  AddStatistics(mesh.statistics, output->GetFieldData());
+  AddStatistics(mesh->statistics, output->GetFieldData());
   return 1;
 }
 

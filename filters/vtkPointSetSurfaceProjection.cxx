@@ -92,12 +92,11 @@ int vtkPointSetSurfaceProjection::RequestData(
     return 0;
   }
   std::vector<pss::ProjectionResult> results(startPoints.size());
-  // Visiting the starts in spatial order lets consecutive projections share cached neighbours.
-  const std::vector<std::uint32_t> order = pss::spatialOrder(startPoints);
-  if (!pss_vtk::ParallelFor(this, n, [&](vtkIdType k, pss::Workspace& ws) {
-        const vtkIdType i = order[k];
-        results[i] = this->ProjectPoint(i, startPoints[i].data(), surface, options, ws);
-      }))
+  const bool completed =
+    pss::forEachStart(startPoints, pss_vtk::SMPLoop(this), [&](std::size_t i, pss::Workspace& ws) {
+      results[i] = this->ProjectPoint(static_cast<vtkIdType>(i), startPoints[i].data(), surface, options, ws);
+    });
+  if (!completed)
   {
     return 1; // aborted: leave the outputs empty
   }

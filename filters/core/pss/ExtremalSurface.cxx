@@ -377,18 +377,23 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   return res;
 }
 
+bool forEachStart(const std::vector<Vec3>& starts, const ParallelLoop& loop,
+  const std::function<void(std::size_t, Workspace&)>& work)
+{
+  const std::vector<std::uint32_t> order = spatialOrder(starts);
+  return loop(order.size(), LoopShare(0.0, 1.0), [&](std::size_t begin, std::size_t end, Workspace& ws) {
+    for (std::size_t k = begin; k < end; ++k)
+    {
+      work(order[k], ws);
+    }
+  });
+}
+
 void projectEach(const SurfaceDefinition& s, const std::vector<Vec3>& starts, const ProjectionOptions& opt,
   int threads, const std::function<void(std::size_t, const ProjectionResult&)>& sink)
 {
   opt.validate();
-  const std::vector<std::uint32_t> order = spatialOrder(starts);
-  parallelFor(order.size(), threads, [&](std::size_t begin, std::size_t end, Workspace& ws) {
-    for (std::size_t k = begin; k < end; ++k)
-    {
-      const std::size_t i = order[k];
-      sink(i, project(s, starts[i], opt, ws));
-    }
-  });
+  forEachStart(starts, threadLoop(threads), [&](std::size_t i, Workspace& ws) { sink(i, project(s, starts[i], opt, ws)); });
 }
 
 std::vector<ProjectionResult> projectAll(

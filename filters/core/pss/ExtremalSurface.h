@@ -7,6 +7,7 @@
  */
 #pragma once
 
+#include "pss/Parallel.h"
 #include "pss/SurfaceDefinition.h"
 #include "pss/Types.h"
 #include "pss/Workspace.h"
@@ -122,6 +123,15 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& start, const Pr
  */
 void projectEach(const SurfaceDefinition& s, const std::vector<Vec3>& starts, const ProjectionOptions& opt,
   int threads, const std::function<void(std::size_t, const ProjectionResult&)>& sink);
+
+/**
+ * What projectEach runs on: calls @p work(i, workspace) once for every start i through @p loop,
+ * visiting the starts in spatialOrder() so that consecutive ones share cached neighbours. For
+ * per-start work beyond a projection (domain classification) and for loops of the caller's own
+ * (the VTK filters'). Returns false when the loop stopped early (then some i were not visited).
+ */
+bool forEachStart(const std::vector<Vec3>& starts, const ParallelLoop& loop,
+  const std::function<void(std::size_t, Workspace&)>& work);
 
 /// projectEach, keeping every result (result i for start i).
 std::vector<ProjectionResult> projectAll(const SurfaceDefinition& s, const std::vector<Vec3>& starts,

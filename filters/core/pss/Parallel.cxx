@@ -29,8 +29,15 @@ void parallelFor(std::size_t n, int threads, const std::function<void(std::size_
   parallelFor(n, threads, [&](std::size_t begin, std::size_t end, Workspace&) { body(begin, end); });
 }
 
-void parallelFor(
-  std::size_t n, int threads, const std::function<void(std::size_t, std::size_t, Workspace&)>& body)
+ParallelLoop threadLoop(int threads)
+{
+  return [threads](std::size_t n, LoopShare, const ChunkBody& body) {
+    parallelFor(n, threads, body);
+    return true;
+  };
+}
+
+void parallelFor(std::size_t n, int threads, const ChunkBody& body)
 {
   if (n == 0)
   {

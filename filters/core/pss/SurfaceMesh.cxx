@@ -967,7 +967,8 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
   }
 }
 
-SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options, int threads, MeshTimings* timings)
+std::optional<SurfaceMesh> extractSurfaceMesh(
+  const SurfaceDefinition& surface, const MeshOptions& options, const ParallelLoop& loop, MeshTimings* timings)
 {
   MeshTimings local;
   MeshTimings& t = timings ? *timings : local;
@@ -979,28 +980,43 @@ SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptio
   };
   SurfaceMesher mesher(surface, options);
   lap(t.band);
-  parallelFor(mesher.gridVertexCount(), threads, [&](std::size_t begin, std::size_t end, Workspace& ws) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      mesher.evaluateVertex(i, ws);
-    }
-  });
+  const bool cornersDone =
+    loop(mesher.gridVertexCount(), LoopShare(0.0, 0.45), [&](std::size_t begin, std::size_t end, Workspace& ws) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        mesher.evaluateVertex(i, ws);
+      }
+    });
+  if (!cornersDone)
+  {
+    return std::nullopt;
+  }
   lap(t.corners);
   mesher.orient();
   lap(t.orient);
   mesher.contour();
   lap(t.contour);
-  parallelFor(mesher.crossingCount(), threads, [&](std::size_t begin, std::size_t end, Workspace& ws) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      mesher.classifyCrossing(i, ws);
-    }
-  });
+  const bool crossingsDone =
+    loop(mesher.crossingCount(), LoopShare(0.5, 0.98), [&](std::size_t begin, std::size_t end, Workspace& ws) {
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        mesher.classifyCrossing(i, ws);
+      }
+    });
+  if (!crossingsDone)
+  {
+    return std::nullopt;
+  }
   lap(t.projection);
   Workspace ws;
   SurfaceMesh mesh = mesher.finish(ws);
   lap(t.finish);
   return mesh;
+}
+
+SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options, int threads, MeshTimings* timings)
+{
+  return *extractSurfaceMesh(surface, options, threadLoop(threads), timings); // threadLoop never stops early
 }
 
 } // namespace pss

@@ -46,6 +46,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -199,8 +200,15 @@ struct MeshTimings
   double band = 0.0, corners = 0.0, orient = 0.0, contour = 0.0, projection = 0.0, finish = 0.0;
 };
 
-/// All stages on @p threads threads (0 = all cores): the core's one-call entry point. Fills
-/// @p timings when given.
+/**
+ * All stages, the two parallel ones through @p loop (the corners' values, then the crossings'
+ * projections: about 45% and 50% of the work): the core's one-call entry point. Returns nothing
+ * when the loop stopped early (the user aborted). Fills @p timings when given.
+ */
+std::optional<SurfaceMesh> extractSurfaceMesh(
+  const SurfaceDefinition& surface, const MeshOptions& options, const ParallelLoop& loop, MeshTimings* timings = nullptr);
+
+/// The same on @p threads threads (0 = all cores).
 SurfaceMesh extractSurfaceMesh(
   const SurfaceDefinition& surface, const MeshOptions& options, int threads = 0, MeshTimings* timings = nullptr);
 
