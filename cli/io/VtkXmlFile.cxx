@@ -53,6 +53,9 @@ protected:
   // reported then means the document is incomplete.
   int ParseXML() override
   {
+    auto* xml = static_cast<XML_Parser>(this->Parser);
+    XML_SetStartDoctypeDeclHandler(xml, &RefuseDoctype);
+    XML_SetStartCdataSectionHandler(xml, &RefuseCdata);
     const int ok = this->Superclass::ParseXML();
     this->atEnd = true;
     return ok;
@@ -62,7 +65,11 @@ protected:
   {
     auto* xml = static_cast<XML_Parser>(this->Parser);
     const std::string line = "line " + std::to_string(XML_GetCurrentLineNumber(xml)) + ": ";
-    if (this->atEnd && this->NumberOfOpenElements > 0)
+    if (this->unsupported)
+    {
+      this->error = line + "unsupported markup (a DOCTYPE or CDATA section)";
+    }
+    else if (this->atEnd && this->NumberOfOpenElements > 0)
     {
       const char* open = this->OpenElements[this->NumberOfOpenElements - 1]->GetName();
       this->error = line + "<" + open + "> is not closed (the file is cut off?)";
@@ -74,7 +81,22 @@ protected:
   }
 
 private:
+  // VTK's writers write neither; a DOCTYPE can define entities that expand far beyond the file,
+  // and a CDATA section is not where VTK's readers look for data. Expat calls these with the
+  // vtkXMLParser as its user data.
+  static void XMLCALL RefuseDoctype(void* parser, const XML_Char*, const XML_Char*, const XML_Char*, int)
+  {
+    RefuseCdata(parser);
+  }
+  static void XMLCALL RefuseCdata(void* parser)
+  {
+    auto* self = static_cast<DataParser*>(static_cast<vtkXMLParser*>(parser));
+    self->unsupported = true;
+    XML_StopParser(static_cast<XML_Parser>(self->Parser), XML_FALSE);
+  }
+
   bool atEnd = false;
+  bool unsupported = false;
 };
 vtkStandardNewMacro(DataParser);
 
@@ -84,6 +106,19 @@ int ByteAt(File& f, std::uint64_t offset)
   f.in.clear();
   f.in.seekg(static_cast<std::streamoff>(offset));
   return f.in.get();
+}
+
+// "line N: " of the start tag of @p e, for messages.
+std::string LineOf(File& f, vtkXMLDataElement* e)
+{
+  f.in.clear();
+  f.in.seekg(0);
+  std::uint64_t line = 1;
+  for (vtkTypeInt64 i = 0; i < e->GetXMLByteIndex() && f.in; ++i)
+  {
+    line += f.in.get() == '\n' ? 1 : 0;
+  }
+  return "line " + std::to_string(line) + ": ";
 }
 
 // Where an array's encoded data start, and whether VTK decodes them as base64 or reads them raw.
@@ -592,13 +627,13 @@ File::File(const std::string& p)
   const std::optional<std::string> encoding = Attribute(sections[0], "encoding");
   if (encoding && *encoding != "raw" && *encoding != "base64")
   {
-    Fail("<AppendedData encoding=\"" + *encoding + "\">: expected raw or base64");
+    Fail(LineOf(*this, sections[0]) + "<AppendedData encoding=\"" + *encoding + "\">: expected raw or base64");
   }
   const vtkTypeInt64 position = reader->GetAppendedDataPosition();
   const std::uint64_t begin = position > 0 ? static_cast<std::uint64_t>(position) : 0;
   if (begin == 0 || begin > size || ByteAt(*this, begin - 1) != '_')
   {
-    Fail("the appended data do not start with '_'");
+    Fail(LineOf(*this, sections[0]) + "the appended data do not start with '_'");
   }
   appended = true;
   appendedRaw = encoding && *encoding == "raw";
