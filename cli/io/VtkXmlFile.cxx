@@ -205,29 +205,31 @@ const ArrayType* LookUpArrayType(const std::string& name)
   return nullptr;
 }
 
-// The text of an element's inline data as VTK's parser finds it (vtkXMLDataParser's
-// SeekInlineDataPosition): from the first '>' after the element's '<', past white space, to the
-// next '<' (no number or base64 character reads past it).
-std::string InlineText(File& f, const Array& a)
+// Positions the file after the first '>' that follows the '<' of @p a's element: VTK's parser
+// (vtkXMLDataParser::SeekInlineDataPosition) reads inline data from there, past white space.
+void SeekInlineData(File& f, const Array& a)
 {
   f.in.clear();
   f.in.seekg(static_cast<std::streamoff>(a.element->GetXMLByteIndex()));
   f.in.ignore(std::numeric_limits<std::streamsize>::max(), '>');
+}
+
+// The text of an ASCII array's inline data, up to the next '<' (no number reads past it).
+std::string InlineText(File& f, const Array& a)
+{
+  SeekInlineData(f, a);
   std::string text;
   std::getline(f.in, text, '<');
   return text;
 }
 
-// Where the binary data of @p a start: inline, as VTK's parser finds them (after the first '>'
-// following the element's '<' and white space), or in the appended data at its offset.
+// Where the binary data of @p a start: inline, or in the appended data at its offset.
 Stream Locate(File& f, const Array& a)
 {
   Stream s;
   if (!a.appended)
   {
-    f.in.clear();
-    f.in.seekg(static_cast<std::streamoff>(a.element->GetXMLByteIndex()));
-    f.in.ignore(std::numeric_limits<std::streamsize>::max(), '>');
+    SeekInlineData(f, a);
     int c = f.in.peek();
     while (c != std::char_traits<char>::eof() && std::isspace(c))
     {
