@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "Ply.h"
 
+#include "Bytes.h"
+
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
@@ -114,42 +116,35 @@ bool IsNumber(const std::string& word)
 // An unsigned or signed integer of @p type at @p p (the count of a binary list).
 long long DecodeCount(const unsigned char* p, const Type& type, bool bigEndian)
 {
-  unsigned long long bits = 0;
-  for (int b = 0; b < type.size; ++b)
+  const auto size = static_cast<std::size_t>(type.size);
+  if (type.kind == 'i')
   {
-    bits |= static_cast<unsigned long long>(p[bigEndian ? type.size - 1 - b : b]) << (8 * b);
+    return std::max<long long>(LoadSigned(p, size, bigEndian), -1); // -1: negative
   }
-  if (type.kind == 'i' && type.size < 8 && (bits >> (8 * type.size - 1)) != 0)
-  {
-    return -1; // negative
-  }
-  return static_cast<long long>(bits);
+  return static_cast<long long>(LoadUnsigned(p, size, bigEndian));
 }
 
 // A value of @p type at @p p, as a double (the face indices' range check).
 double DecodeValue(const unsigned char* p, const Type& type, bool bigEndian)
 {
-  unsigned long long bits = 0;
-  for (int b = 0; b < type.size; ++b)
+  const auto size = static_cast<std::size_t>(type.size);
+  if (type.kind == 'i')
   {
-    bits |= static_cast<unsigned long long>(p[bigEndian ? type.size - 1 - b : b]) << (8 * b);
+    return static_cast<double>(LoadSigned(p, size, bigEndian));
+  }
+  const std::uint64_t bits = LoadUnsigned(p, size, bigEndian);
+  if (type.kind == 'f' && size == 4)
+  {
+    float f = 0.0f;
+    const auto u = static_cast<std::uint32_t>(bits);
+    std::memcpy(&f, &u, sizeof f);
+    return f;
   }
   if (type.kind == 'f')
   {
-    if (type.size == 4)
-    {
-      float f = 0.0f;
-      const auto u = static_cast<std::uint32_t>(bits);
-      std::memcpy(&f, &u, sizeof f);
-      return f;
-    }
     double d = 0.0;
     std::memcpy(&d, &bits, sizeof d);
     return d;
-  }
-  if (type.kind == 'i' && (bits >> (8 * type.size - 1)) != 0)
-  {
-    return static_cast<double>(static_cast<long long>(bits) - (1LL << (8 * type.size)));
   }
   return static_cast<double>(bits);
 }

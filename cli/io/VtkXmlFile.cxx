@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "VtkXmlFile.h"
 
+#include "Bytes.h"
 #include "Text.h"
 
 #include "vtkBase64InputStream.h"
@@ -180,14 +181,10 @@ std::uint64_t Read(vtkInputStream* stream, std::uint64_t count, std::vector<unsi
   return n;
 }
 
+// Word @p index of a size header.
 std::uint64_t Word(const std::vector<unsigned char>& bytes, std::size_t index, std::uint64_t size, bool bigEndian)
 {
-  std::uint64_t v = 0;
-  for (std::uint64_t b = 0; b < size; ++b)
-  {
-    v |= static_cast<std::uint64_t>(bytes[index * size + (bigEndian ? size - 1 - b : b)]) << (8 * b);
-  }
-  return v;
+  return LoadUnsigned(bytes.data() + index * size, static_cast<std::size_t>(size), bigEndian);
 }
 
 const ArrayType* LookUpArrayType(const std::string& name)
@@ -489,22 +486,14 @@ std::vector<unsigned char> Decode(File& f, const Array& a, const SizeHeader& h)
 
 long long IntegerAt(const unsigned char* p, const ArrayType& t, bool bigEndian)
 {
-  std::uint64_t bits = 0;
-  for (std::uint64_t b = 0; b < t.size; ++b)
+  const auto size = static_cast<std::size_t>(t.size);
+  if (t.kind == 'i')
   {
-    bits |= static_cast<std::uint64_t>(p[bigEndian ? t.size - 1 - b : b]) << (8 * b);
+    return LoadSigned(p, size, bigEndian);
   }
-  if (t.kind == 'i' && t.size < 8 && (bits >> (8 * t.size - 1)) != 0)
-  {
-    return static_cast<long long>(bits) - (1LL << (8 * t.size));
-  }
-  if (t.kind == 'u' && bits > static_cast<std::uint64_t>(std::numeric_limits<long long>::max()))
-  {
-    return std::numeric_limits<long long>::max(); // fails every range check
-  }
-  long long value = 0;
-  std::memcpy(&value, &bits, sizeof value);
-  return value;
+  // Beyond the largest long long: fails every range check.
+  return static_cast<long long>(
+    std::min<std::uint64_t>(LoadUnsigned(p, size, bigEndian), std::numeric_limits<long long>::max()));
 }
 
 } // namespace
