@@ -631,8 +631,6 @@ File::File(const std::string& p)
   appendedBegin = begin;
 }
 
-File::~File() = default;
-
 void File::Fail(const std::string& what) const
 {
   throw std::runtime_error(path + ": not a VTK XML file pss can read safely: " + what);

@@ -65,7 +65,6 @@ class File
 public:
   /// Parses @p path with vtkXMLDataParser; throws std::runtime_error on malformed markup.
   explicit File(const std::string& path);
-  ~File();
 
   [[noreturn]] void Fail(const std::string& what) const;
 
@@ -87,7 +86,7 @@ public:
   std::uint64_t used = 0;   // bytes the arrays checked so far hold
 
 private:
-  vtkSmartPointer<vtkXMLDataParser> parser;
+  vtkSmartPointer<vtkXMLDataParser> parser; // owns the element tree
 };
 
 /// The one <name> child of @p parent, or null; two are refused (which one VTK uses differs).
