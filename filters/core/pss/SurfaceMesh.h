@@ -137,6 +137,7 @@ public:
 
 private:
   using Key = std::uint64_t;
+  static constexpr std::uint32_t NoIndex = static_cast<std::uint32_t>(-1); ///< no corner, crossing or vertex
   struct CornerValue
   {
     Vec3 n = Vec3::Zero();
