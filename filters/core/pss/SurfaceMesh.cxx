@@ -539,14 +539,16 @@ std::optional<SurfaceMesh> extractSurfaceMesh(
   };
   SurfaceMesher mesher(surface, options);
   lap(t.band);
-  const bool cornersDone =
-    loop(mesher.gridVertexCount(), LoopShare(0.0, 0.45), [&](std::size_t begin, std::size_t end, Workspace& ws) {
+  // The two parallel stages: one call of a mesher method per index, through the caller's loop.
+  auto each = [&loop, &mesher](std::size_t n, LoopShare share, void (SurfaceMesher::*stage)(std::size_t, Workspace&)) {
+    return loop(n, share, [&](std::size_t begin, std::size_t end, Workspace& ws) {
       for (std::size_t i = begin; i < end; ++i)
       {
-        mesher.evaluateVertex(i, ws);
+        (mesher.*stage)(i, ws);
       }
     });
-  if (!cornersDone)
+  };
+  if (!each(mesher.gridVertexCount(), LoopShare(0.0, 0.45), &SurfaceMesher::evaluateVertex))
   {
     return std::nullopt;
   }
@@ -555,14 +557,7 @@ std::optional<SurfaceMesh> extractSurfaceMesh(
   lap(t.orient);
   mesher.contour();
   lap(t.contour);
-  const bool crossingsDone =
-    loop(mesher.crossingCount(), LoopShare(0.5, 0.98), [&](std::size_t begin, std::size_t end, Workspace& ws) {
-      for (std::size_t i = begin; i < end; ++i)
-      {
-        mesher.classifyCrossing(i, ws);
-      }
-    });
-  if (!crossingsDone)
+  if (!each(mesher.crossingCount(), LoopShare(0.5, 0.98), &SurfaceMesher::classifyCrossing))
   {
     return std::nullopt;
   }
