@@ -25,8 +25,9 @@
  * - `DomainLabel` (ComputeDomainLabels on): pss::classifyStart of every sample, 0 in domain,
  *   1 spurious, 2 undefined, 3 not converged (see vtkPointSetSurfaceDomainClassifier). This
  *   projects every sample onto the surface (MaxIterations, Tolerance, MaxDistance,
- *   MaxNormalAngle, named and bounded as vtkPointSetSurfaceDomainClassifier's) and is expensive: on an 81 x 81 grid around a circle it multiplied
- *   the time by 3 (Delta), 6 (CenterOfMass) and 45 (LevinMLS, whose far samples iterate long).
+ *   MaxNormalAngle, named and bounded as vtkPointSetSurfaceDomainClassifier's) and is
+ *   expensive: on an 81 x 81 grid around a circle it multiplied the time by 3 (Delta), 6
+ *   (CenterOfMass) and 45 (LevinMLS, whose far samples iterate long).
  *   Off by default.
  *
  * @par Orientation of n.

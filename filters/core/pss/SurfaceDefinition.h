@@ -123,7 +123,7 @@ private:
   const std::unique_ptr<const Energy> Energies;
 };
 
-/// The definition named by @p v: variantTable()'s row for it (defined in Variants.cxx). Throws
+/// The definition named by @p v: variantTable()'s row for it (defined in VariantTable.cxx). Throws
 /// like the constructor, and std::invalid_argument for a value outside the table.
 std::unique_ptr<SurfaceDefinition> makeSurface(Variant v, const PointIndex& index, const SurfaceParameters& params);
 

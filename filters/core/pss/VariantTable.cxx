@@ -19,6 +19,12 @@ std::unique_ptr<DirectionRule> covariance(const PointIndex& index, const Surface
   return std::make_unique<CovarianceDirection>(index, params, about);
 }
 
+template <MLSEnergy::Weights weights>
+std::unique_ptr<Energy> mlsEnergy(const PointIndex& index, const SurfaceParameters& params)
+{
+  return std::make_unique<MLSEnergy>(index, params, weights);
+}
+
 template <class Part, class Base>
 std::unique_ptr<Base> make(const PointIndex& index, const SurfaceParameters& params)
 {
@@ -29,8 +35,8 @@ std::unique_ptr<Base> make(const PointIndex& index, const SurfaceParameters& par
 constexpr auto aboutQuery = covariance<CovarianceDirection::About::Query>;
 constexpr auto aboutCentroid = covariance<CovarianceDirection::About::Centroid>;
 constexpr auto integralArgmin = make<IntegralDirection, DirectionRule>;
-constexpr auto mls = make<MLSEnergy, Energy>;
-constexpr auto normalizedMls = make<NormalizedMLSEnergy, Energy>;
+constexpr auto mls = mlsEnergy<MLSEnergy::Weights::Plain>;
+constexpr auto normalizedMls = mlsEnergy<MLSEnergy::Weights::Normalized>;
 constexpr auto integral = make<IntegralEnergy, Energy>;
 constexpr auto delta = make<DeltaEnergy, Energy>;
 

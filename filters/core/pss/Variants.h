@@ -42,36 +42,28 @@ private:
 };
 
 /**
- * @brief Levin's MLS energy (Eq. 1 with the plain Gaussian theta):
- *        e(y, a) = sum_i theta(y, p_i) <a, p_i - y>^2 = a^T C(y) a.
+ * @brief The MLS energy of Eq. 1, e(y, a) = sum_i theta(y, p_i) <a, p_i - y>^2 = a^T C(y) a, with
+ *        the plain Gaussian weights (Levin) or normalized ones theta_N (Alexa et al., Sec. 4).
  *
- * Reported at its true scale, which is tiny and flat far from the cloud: that is the paper's
- * point about this definition.
+ * Levin's is reported at its true scale, which is tiny and flat far from the cloud: that is the
+ * paper's point about that definition. The normalized one is a weighted mean of squared plane
+ * distances, so it grows away from the cloud instead of fading out.
  */
 class MLSEnergy : public Energy
 {
 public:
-  MLSEnergy(const PointIndex& index, const SurfaceParameters& params);
+  enum class Weights
+  {
+    Plain,     ///< theta(y, p_i)
+    Normalized ///< theta_N(y, p_i) = theta(y, p_i) / sum_j theta(y, p_j)
+  };
+  MLSEnergy(const PointIndex& index, const SurfaceParameters& params, Weights weights);
   LineSample lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const override;
 
 private:
   const PointIndex& Index;
   const SurfaceParameters Params;
-};
-
-/**
- * @brief Eq. 1 with normalized weights theta_N (Alexa et al., Sec. 4): a weighted mean of squared
- *        plane distances, so it grows away from the cloud instead of fading out.
- */
-class NormalizedMLSEnergy : public Energy
-{
-public:
-  NormalizedMLSEnergy(const PointIndex& index, const SurfaceParameters& params);
-  LineSample lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const override;
-
-private:
-  const PointIndex& Index;
-  const SurfaceParameters Params;
+  const Weights Weighting;
 };
 
 /**
