@@ -153,7 +153,117 @@ void checkDistanceGradient(int dim)
   }
 }
 
+// The second derivatives: delta's curvature along a direction (and its jet's value and
+// gradient), and every definition's LineSample.curvature where it gives one, against central
+// differences of the analytic first derivatives.
+void checkSecondDerivatives(int dim)
+{
+  Workspace ws;
+  const Cloud c = makeCloud(dim);
+  PointIndex index(c.pts, dim);
+  DistanceField field(index, params(c.h, 6.0));
+  const double eps = 1e-4 * c.h;
+  std::mt19937 rng(91);
+  for (const Vec3& x : queries(c, 30, 99u))
+  {
+    const Vec3 a = randomUnit(rng, dim);
+    const DeltaJet jet = field.jet(x, a, ws);
+    Vec3 grad;
+    const double delta = field.deltaAndGradient(x, ws, grad);
+    expectClose(jet.value, delta, 0.0, "jet value");
+    EXPECT_LE((jet.gradient - grad).norm(), 1e-12 * std::max(grad.norm(), delta / c.h)) << "jet gradient";
+    Vec3 gp;
+    Vec3 gm;
+    field.deltaAndGradient(x + eps * a, ws, gp);
+    field.deltaAndGradient(x - eps * a, ws, gm);
+    expectClose(jet.curvature, a.dot(gp - gm) / (2 * eps), std::max(2.0, delta / (c.h * c.h)), "a^T H a of delta");
+  }
+  for (Variant v : allVariants())
+  {
+    auto s = makeSurface(v, index, params(c.h, 6.0));
+    const int n = (dim == 3 && v == Variant::Integral) ? 6 : 15;
+    for (const Vec3& x : queries(c, n, 56u))
+    {
+      const Vec3 a = randomUnit(rng, dim);
+      const LineSample ls = s->lineSample(x, a, ws);
+      if (std::isnan(ls.curvature))
+      {
+        continue; // no closed form: the core differences the slope itself
+      }
+      const LineSample plus = s->lineSample(x + eps * a, a, ws);
+      const LineSample minus = s->lineSample(x - eps * a, a, ws);
+      const double fd = (plus.trueSlope() - minus.trueSlope()) / (2 * eps);
+      const double curvature = ls.curvature * std::exp(ls.logScale);
+      expectClose(curvature, fd, ls.trueValue() / (c.h * c.h),
+        std::string(variantName(v)) + " line curvature dim " + std::to_string(dim));
+    }
+  }
+}
+
 } // namespace
+
+// Truth: delta's curvature along a = derivative of a . grad delta along a; the jet's value and
+// gradient are deltaAndGradient's; LineSample.curvature = derivative of the slope. 1e-6 relative.
+TEST(Derivatives, SecondDerivativesMatchCentralDifference2D)
+{
+  checkSecondDerivatives(2);
+}
+
+// Truth: same in 3D.
+TEST(Derivatives, SecondDerivativesMatchCentralDifference3D)
+{
+  checkSecondDerivatives(3);
+}
+
+// Truth: delta of a single point is |y - p|^2, whose Hessian is 2 I: curvature 2 along any a.
+TEST(Derivatives, SinglePointDeltaCurvatureIsTwo)
+{
+  Workspace ws;
+  const std::vector<Vec3> one{ Vec3(0.3, -0.2, 0.1) };
+  PointIndex index(one, 3);
+  DistanceField field(index, params(0.5, 3.0));
+  std::mt19937 rng(5);
+  for (int k = 0; k < 10; ++k)
+  {
+    const Vec3 y = one[0] + 3.0 * randomUnit(rng, 3);
+    const DeltaJet jet = field.jet(y, randomUnit(rng, 3), ws);
+    EXPECT_NEAR(jet.curvature, 2.0, 1e-12);
+    EXPECT_NEAR(jet.value, (y - one[0]).squaredNorm(), 1e-12);
+  }
+}
+
+// Truth: the tilt gradient and Hessian of e_I are the first and second derivatives of
+// s -> e_I(x, tilted(frame, s)) at s = 0 (tilted() is the chart Newton steps in). Central and
+// second differences with step 1e-3 rad: truncation ~1e-7 relative, rounding ~1e-10.
+TEST(Derivatives, IntegralTiltHessianMatchesDifferences)
+{
+  Workspace ws;
+  const Cloud c = makeCloud(3);
+  PointIndex index(c.pts, 3);
+  IntegralEnergy integral(index, params(c.h, 6.0));
+  using D = IntegralEnergy::Derivatives;
+  const double eps = 1e-3;
+  std::mt19937 rng(17);
+  for (const Vec3& x : queries(c, 5, 23u))
+  {
+    const IntegralEnergy::Frame f = integral.frameOf(randomUnit(rng, 3));
+    const IntegralEnergy::PlaneIntegral at = integral.integrate(x, f, D::UpToSecond, ws);
+    auto e = [&](double s1, double s2) {
+      return integral.integrate(x, IntegralEnergy::tilted(f, Eigen::Vector2d(s1, s2)), D::None, ws).value;
+    };
+    const double e0 = e(0, 0);
+    const double scale = at.value;
+    expectClose(at.value, e0, 0.0, "value");
+    expectClose(at.tilt.x(), (e(eps, 0) - e(-eps, 0)) / (2 * eps), scale, "tilt 1");
+    expectClose(at.tilt.y(), (e(0, eps) - e(0, -eps)) / (2 * eps), scale, "tilt 2");
+    const double tol = 1e-5 * std::max(at.tiltHessian.cwiseAbs().maxCoeff(), scale);
+    EXPECT_NEAR(at.tiltHessian(0, 0), (e(eps, 0) - 2 * e0 + e(-eps, 0)) / (eps * eps), tol);
+    EXPECT_NEAR(at.tiltHessian(1, 1), (e(0, eps) - 2 * e0 + e(0, -eps)) / (eps * eps), tol);
+    const double mixed = (e(eps, eps) - e(eps, -eps) - e(-eps, eps) + e(-eps, -eps)) / (4 * eps * eps);
+    EXPECT_NEAR(at.tiltHessian(0, 1), mixed, tol);
+    EXPECT_NEAR(at.tiltHessian(1, 0), mixed, tol);
+  }
+}
 
 // Truth: LineSample.slope = d/dt e(y + t a, a) (its definition); 1e-6 relative (see top).
 TEST(Derivatives, LineSlopeMatchesCentralDifference2D)

@@ -11,10 +11,11 @@ DeltaEnergy::DeltaEnergy(const PointIndex& index, const SurfaceParameters& param
 
 LineSample DeltaEnergy::lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const
 {
-  Vec3 gradient;
   LineSample out;
-  out.value = Field.deltaAndGradient(y, ws, gradient, &out.nearestSqDist);
-  out.slope = a.dot(gradient);
+  const DeltaJet jet = Field.jet(y, a, ws, &out.nearestSqDist);
+  out.value = jet.value;
+  out.slope = a.dot(jet.gradient);
+  out.curvature = jet.curvature;
   return out;
 }
 

@@ -356,12 +356,21 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
       break;
     }
     fitted = x;
+    // The iterates' stability only decides whether to go on; the one reported is the final
+    // fit's, and that is never an estimate (below).
+    memory.estimateStability = !converged;
     dir = fitAt(x);
     if (converged)
     {
       res.reason = dir.defined ? StopReason::Converged : StopReason::UndefinedDirection;
       break;
     }
+  }
+  if (memory.stabilityEstimated)
+  {
+    // Stopped at an intermediate iterate (iteration limit, no extremum): fit it again in full.
+    memory.estimateStability = false;
+    dir = fitAt(fitted);
   }
   res.point = x;
   res.direction = dir;

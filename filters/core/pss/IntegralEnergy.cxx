@@ -15,44 +15,6 @@ namespace pss
 namespace
 {
 
-// Golden-section search for a minimum of f on [lo, hi]; f is smooth and unimodal there because
-// the bracket comes from a fine scan. Returns the abscissa and stores the value in fBest.
-template <class F>
-double goldenMinimum(const F& f, double lo, double hi, double tol, double& fBest)
-{
-  const double r = 0.5 * (std::sqrt(5.0) - 1.0);
-  double c = hi - r * (hi - lo);
-  double d = lo + r * (hi - lo);
-  double fc = f(c);
-  double fd = f(d);
-  while (hi - lo > tol)
-  {
-    if (fc < fd)
-    {
-      hi = d;
-      d = c;
-      fd = fc;
-      c = hi - r * (hi - lo);
-      fc = f(c);
-    }
-    else
-    {
-      lo = c;
-      c = d;
-      fc = fd;
-      d = lo + r * (hi - lo);
-      fd = f(d);
-    }
-  }
-  if (fc < fd)
-  {
-    fBest = fc;
-    return c;
-  }
-  fBest = fd;
-  return d;
-}
-
 // Orthonormal basis (b1, b2) of the plane with unit normal a (Duff et al.'s branch-free frame).
 // The unoriented a is first flipped to a.z >= 0, away from the frame's only singularity.
 void planeBasis(Vec3 a, Vec3& b1, Vec3& b2)
@@ -73,14 +35,13 @@ Vec3 inPlane(const Vec3& b1, const Vec3& b2, double phi)
   return std::cos(phi) * b1 + std::sin(phi) * b2;
 }
 
-constexpr double AngularTolerance = 1e-9;
-
 } // namespace
 
 IntegralEnergy::IntegralEnergy(const PointIndex& index, const SurfaceParameters& params)
   : Index(index)
   , Params(params)
   , Rule(gaussHermite(params.quadratureOrder))
+  , RoughRule(gaussHermite(std::min(params.quadratureOrder, 3)))
   , Field(index, params)
 {
 }
@@ -127,42 +88,68 @@ IntegralEnergy::Frame IntegralEnergy::tilted(const Frame& f, const Eigen::Vector
 }
 
 IntegralEnergy::PlaneIntegral IntegralEnergy::integrate(
-  const Vec3& x, const Frame& f, bool derivatives, Workspace& ws) const
+  const Vec3& x, const Frame& f, Derivatives order, Workspace& ws) const
+{
+  return sum(x, f, order, Rule, ws);
+}
+
+double IntegralEnergy::roughValue(const Vec3& x, const Vec3& a, Workspace& ws) const
+{
+  return sum(x, frameOf(a), Derivatives::None, RoughRule, ws).value;
+}
+
+IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
+  const Vec3& x, const Frame& f, Derivatives order, const GaussHermiteRule& rule, Workspace& ws) const
 {
   const double h = Params.h;
   const int p = Params.integrandPower;
   const Vec3 origin = Index.restrict(x);
   const bool planar = Index.dimension() == 2;
   PlaneIntegral out;
-  Vec3 gradient;
-  // The node at in-plane coordinates (u, v) (units of h) adds weight * delta^p. Its derivative
-  // along a is s = weight * p delta^(p-1) a . grad delta; tilting a towards b1 by eps moves the
-  // node by -eps h u a (the plane pivots about x), so the tilt gradient adds -s h (u, v).
+  // The node at in-plane coordinates w = (u, v) (units of h) adds weight * F(delta), F = delta^p.
+  // Moving the plane by t along a moves every node by t a; tilting a by s (tilted()'s
+  // coordinates) moves the node by -h (s . w) a to first order and by -h (s . w) / 2 (s1 b1 + s2 b2)
+  // to second. With ga = a . grad delta, gb its in-plane components and c = a^T H a:
+  //   slope = F' ga,  curvature = F'' ga^2 + F' c,  tilt = -h w F' ga,
+  //   tiltHessian = h^2 w w^T (F'' ga^2 + F' c) - (h / 2) F' (w gb^T + gb w^T).
   auto accumulate = [&](double u, double v, double weight) {
     const Vec3 y = origin + h * (u * f.b1 + v * f.b2);
-    const double d = derivatives ? Field.deltaAndGradient(y, ws, gradient) : Field.delta(y, ws);
-    out.value += weight * (p == 2 ? d * d : d);
-    if (derivatives)
+    if (order == Derivatives::None)
     {
-      const double s = weight * (p == 2 ? 2.0 * d : 1.0) * f.a.dot(gradient);
-      out.slope += s;
-      out.tilt -= (s * h) * Eigen::Vector2d(u, v);
+      const double d = Field.delta(y, ws);
+      out.value += weight * (p == 2 ? d * d : d);
+      return;
     }
+    const DeltaJet jet = Field.jet(y, f.a, ws);
+    const double d = jet.value;
+    const double dF = p == 2 ? 2.0 * d : 1.0;
+    const double ddF = p == 2 ? 2.0 : 0.0;
+    const double ga = f.a.dot(jet.gradient);
+    const double s = weight * dF * ga;
+    const Eigen::Vector2d w(u, v);
+    out.value += weight * (p == 2 ? d * d : d);
+    out.slope += s;
+    out.tilt -= (s * h) * w;
+    const double alongA = weight * (ddF * ga * ga + dF * jet.curvature);
+    const Eigen::Vector2d gb(f.b1.dot(jet.gradient), f.b2.dot(jet.gradient));
+    const Eigen::Matrix2d cross = w * gb.transpose();
+    out.curvature += alongA;
+    out.tiltHessian += (alongA * h * h) * (w * w.transpose()) - (0.5 * h * weight * dF) * (cross + cross.transpose());
   };
   // Every node lies within h * max|node| (times sqrt(2) in 3D) of x: one candidate fetch serves
   // all. The nodes are then visited by halves of the line, quarters of the plane, each with
   // the part of the fetch its nodes can need (a node's own gather then scans a few hundred
   // candidates instead of some 1,500).
-  const double spread = h * Rule.nodes.back() * (planar ? 1.0 : std::sqrt(2.0));
+  const double spread = h * rule.nodes.back() * (planar ? 1.0 : std::sqrt(2.0));
   prefetchNeighbourhoods(Index, Params, origin, spread, ws);
   // Node index ranges: the two halves of the u axis, and of the v axis in 3D (the line has one
   // "v" node, at 0). With one node per axis a half is empty.
-  const std::size_t n = Rule.nodes.size();
+  const std::size_t n = rule.nodes.size();
   using Range = std::array<std::size_t, 2>;
   const std::array<Range, 2> halves{ Range{ 0, n / 2 }, Range{ n / 2, n } };
   const std::array<Range, 2> vRanges = planar ? std::array<Range, 2>{ Range{ 0, 1 }, Range{ 1, 1 } } : halves;
-  auto vAt = [&](std::size_t k) { return planar ? 0.0 : Rule.nodes[k]; };
-  auto weightAt = [&](std::size_t j, std::size_t k) { return planar ? Rule.weights[j] : Rule.weights[j] * Rule.weights[k]; };
+  auto vAt = [&](std::size_t k) { return planar ? 0.0 : rule.nodes[k]; };
+  auto weightAt = [&](std::size_t j, std::size_t k) { return planar ? rule.weights[j] : rule.weights[j] * rule.weights[k]; };
   for (const Range& us : halves)
   {
     for (const Range& vs : vRanges)
@@ -172,15 +159,15 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::integrate(
         continue;
       }
       // The block's centre and its corners' distance from it, in units of h.
-      const double cu = 0.5 * (Rule.nodes[us[0]] + Rule.nodes[us[1] - 1]);
+      const double cu = 0.5 * (rule.nodes[us[0]] + rule.nodes[us[1] - 1]);
       const double cv = 0.5 * (vAt(vs[0]) + vAt(vs[1] - 1));
-      const double corner = std::hypot(Rule.nodes[us[1] - 1] - cu, vAt(vs[1] - 1) - cv);
+      const double corner = std::hypot(rule.nodes[us[1] - 1] - cu, vAt(vs[1] - 1) - cv);
       focusNeighbourhoods(Index, Params, origin + h * (cu * f.b1 + cv * f.b2), h * corner, ws);
       for (std::size_t j = us[0]; j < us[1]; ++j)
       {
         for (std::size_t k = vs[0]; k < vs[1]; ++k)
         {
-          accumulate(Rule.nodes[j], vAt(k), weightAt(j, k));
+          accumulate(rule.nodes[j], vAt(k), weightAt(j, k));
         }
       }
     }
@@ -189,22 +176,25 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::integrate(
   out.value *= jacobian;
   out.slope *= jacobian;
   out.tilt *= jacobian;
+  out.curvature *= jacobian;
+  out.tiltHessian *= jacobian;
   return out;
 }
 
 double IntegralEnergy::value(const Vec3& y, const Vec3& a, Workspace& ws) const
 {
-  return integrate(y, frameOf(a), false, ws).value;
+  return integrate(y, frameOf(a), Derivatives::None, ws).value;
 }
 
 LineSample IntegralEnergy::lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const
 {
-  // Moving the plane along its own normal a moves every node by the same t a, so the slope is
-  // the quadrature of d(delta^p)/dt = p delta^(p-1) a . grad delta.
-  const PlaneIntegral sums = integrate(y, frameOf(a), true, ws);
+  // Moving the plane along its own normal a moves every node by the same t a: the slope and the
+  // curvature are quadratures of the first two derivatives of delta^p along a.
+  const PlaneIntegral sums = integrate(y, frameOf(a), Derivatives::UpToSecond, ws);
   LineSample out;
   out.value = sums.value;
   out.slope = sums.slope;
+  out.curvature = sums.curvature;
   out.nearestSqDist = Index.nearest(y).second;
   return out;
 }
@@ -226,9 +216,9 @@ IntegralDirection::Across IntegralDirection::leastEnergyOrthogonalTo(
   }
   // Twelve samples of the half circle of directions orthogonal to n (a and -a are the same, so
   // the samples wrap around), then one more at the vertex of the parabola through the best
-  // sample and its neighbours. Given the last iterate's answer (@p near), three samples around
-  // it do when the middle one is the least of them (the minimum has not moved past a neighbour);
-  // otherwise the full scan runs.
+  // sample and its neighbours. Given a guess (@p near: the last iterate's answer, or the tilt
+  // Hessian's softest direction), the samples start around it and walk downhill instead: usually
+  // three or four samples instead of twelve.
   Vec3 b1;
   Vec3 b2;
   planeBasis(n, b1, b2);
@@ -246,6 +236,18 @@ IntegralDirection::Across IntegralDirection::leastEnergyOrthogonalTo(
     before = sampleAt(centre - step);
     best = sampleAt(centre);
     after = sampleAt(centre + step);
+    // Walk downhill a step at a time until the middle sample is the least. e_I is periodic in
+    // the angle (period pi, 12 steps), so a strictly falling walk cannot last a whole period.
+    const double direction = after < before ? 1.0 : -1.0;
+    for (int k = 0; k < samples && !(best <= before && best <= after); ++k)
+    {
+      centre += direction * step;
+      double& behind = direction > 0.0 ? before : after;
+      double& ahead = direction > 0.0 ? after : before;
+      behind = best;
+      best = ahead;
+      ahead = sampleAt(centre + direction * step);
+    }
     bracketed = best <= before && best <= after;
   }
   if (!bracketed)
@@ -275,33 +277,23 @@ IntegralDirection::Across IntegralDirection::leastEnergyOrthogonalTo(
 
 IntegralDirection::Minimum IntegralDirection::refineDirection(const Vec3& x, const Vec3& start, Workspace& ws) const
 {
-  // Newton's method on the sphere. The gradient is analytic (the tilt sums); the Hessian is a
-  // forward difference of it over hessianStep, wide enough that the truncation of the Gaussian
-  // (points entering or leaving the cut-off band change delta by ~exp(-9) relative) does not
-  // dominate it. The step uses |eigenvalues|, so it goes downhill at saddles too, is capped at
-  // maxTurn (beyond that the quadratic model means little), and is halved until e_I decreases.
-  // Where e_I is constant along a ring of directions (n is not unique there, stability ~0) the
-  // steps stop decreasing it and the iteration ends. After a step, the last Hessian (carried
-  // along by the parallel transport of tilted()) predicts the next one; when that is below the
-  // tolerance the iteration ends without the two integrals of a new Hessian.
-  constexpr double hessianStep = 1e-3;
+  // Newton's method on the sphere, with the analytic tilt gradient and Hessian (integrate()).
+  // The step uses |eigenvalues|, so it goes downhill at saddles too, is capped at maxTurn (beyond
+  // that the quadratic model means little), and is halved until e_I decreases. Where e_I is
+  // constant along a ring of directions (n is not unique there, stability ~0) the steps stop
+  // decreasing it and the iteration ends.
   constexpr double maxTurn = 0.2;
   constexpr double angularTolerance = 1e-8;
   constexpr int maxIterations = 30;
   using Frame = IntegralEnergy::Frame;
   using PlaneIntegral = IntegralEnergy::PlaneIntegral;
+  constexpr auto second = IntegralEnergy::Derivatives::UpToSecond;
+  Minimum out;
   Frame f = Integral.frameOf(start);
-  PlaneIntegral at = Integral.integrate(x, f, true, ws);
+  PlaneIntegral at = Integral.integrate(x, f, second, ws);
   for (int it = 0; it < maxIterations && at.tilt.allFinite(); ++it)
   {
-    const PlaneIntegral along1 =
-      Integral.integrate(x, IntegralEnergy::tilted(f, Eigen::Vector2d(hessianStep, 0.0)), true, ws);
-    const PlaneIntegral along2 =
-      Integral.integrate(x, IntegralEnergy::tilted(f, Eigen::Vector2d(0.0, hessianStep)), true, ws);
-    Eigen::Matrix2d hessian;
-    hessian.col(0) = (along1.tilt - at.tilt) / hessianStep;
-    hessian.col(1) = (along2.tilt - at.tilt) / hessianStep;
-    const Eigen::Matrix2d symmetric = 0.5 * (hessian + hessian.transpose());
+    const Eigen::Matrix2d symmetric = 0.5 * (at.tiltHessian + at.tiltHessian.transpose());
     if (!symmetric.allFinite())
     {
       break;
@@ -313,19 +305,21 @@ IntegralDirection::Minimum IntegralDirection::refineDirection(const Vec3& x, con
       break;
     }
     const Eigen::Vector2d lambda = eigen.eigenvalues().cwiseAbs().cwiseMax(1e-9 * largest);
-    auto newtonStep = [&](const Eigen::Vector2d& gradient) -> Eigen::Vector2d {
-      return -(eigen.eigenvectors() * (eigen.eigenvectors().transpose() * gradient).cwiseQuotient(lambda));
-    };
-    Eigen::Vector2d step = newtonStep(at.tilt);
+    Eigen::Vector2d step =
+      -(eigen.eigenvectors() * (eigen.eigenvectors().transpose() * at.tilt).cwiseQuotient(lambda));
     if (step.norm() > maxTurn)
     {
       step *= maxTurn / step.norm();
+    }
+    if (step.norm() < angularTolerance)
+    {
+      break;
     }
     bool moved = false;
     for (int halving = 0; halving < 10 && step.norm() >= angularTolerance; ++halving, step *= 0.5)
     {
       const Frame trialFrame = IntegralEnergy::tilted(f, step);
-      const PlaneIntegral trial = Integral.integrate(x, trialFrame, true, ws);
+      const PlaneIntegral trial = Integral.integrate(x, trialFrame, second, ws);
       if (trial.value < at.value)
       {
         f = trialFrame;
@@ -334,12 +328,19 @@ IntegralDirection::Minimum IntegralDirection::refineDirection(const Vec3& x, con
         break;
       }
     }
-    if (!moved || step.norm() < angularTolerance || !(newtonStep(at.tilt).norm() >= angularTolerance))
+    if (!moved)
     {
       break;
     }
   }
-  return { f.a, at.value };
+  out.n = f.a;
+  out.value = at.value;
+  // The tilt towards which e_I grows least: where the search for e_perp starts (in 3D).
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(0.5 * (at.tiltHessian + at.tiltHessian.transpose()));
+  const Eigen::Vector2d soft = eigen.eigenvectors().col(0);
+  out.softest = (soft.x() * f.b1 + soft.y() * f.b2).normalized();
+  out.softCurvature = eigen.eigenvalues()(0);
+  return out;
 }
 
 namespace
@@ -359,12 +360,16 @@ Direction finishDirection(const Vec3& n, double eMin, double ePerp, double minSt
 
 IntegralDirection::Minimum IntegralDirection::minimum2D(const Vec3& x, const Vec3* near, Workspace& ws) const
 {
-  // Scan the half circle of unoriented directions, then refine the best sample's bracket by
-  // golden-section search. From the last iterate's n_I, three samples bracket the minimum
-  // when the middle one is the least (else the scan runs).
+  // Scan the half circle of unoriented directions, then refine the best sample by Newton's
+  // method (refineDirection; in 2D the tilt has one component). From the last iterate's n_I,
+  // three samples bracket the minimum when the middle one is the least (else the scan runs, on
+  // the rough e_I: it only has to find the basin).
   constexpr int samples = 36;
   const double step = M_PI / samples;
   auto energyAt = [&](double phi) { return Integral.value(x, Vec3(std::cos(phi), std::sin(phi), 0.0), ws); };
+  auto roughEnergyAt = [&](double phi) {
+    return Integral.roughValue(x, Vec3(std::cos(phi), std::sin(phi), 0.0), ws);
+  };
   double centre = 0.0;
   bool bracketed = false;
   if (near)
@@ -379,7 +384,7 @@ IntegralDirection::Minimum IntegralDirection::minimum2D(const Vec3& x, const Vec
     double bestValue = std::numeric_limits<double>::infinity();
     for (int k = 0; k < samples; ++k)
     {
-      const double e = energyAt(k * step);
+      const double e = roughEnergyAt(k * step);
       if (e < bestValue)
       {
         bestValue = e;
@@ -388,10 +393,7 @@ IntegralDirection::Minimum IntegralDirection::minimum2D(const Vec3& x, const Vec
     }
     centre = best * step;
   }
-  Minimum out;
-  const double phi = goldenMinimum(energyAt, centre - step, centre + step, AngularTolerance, out.value);
-  out.n = Vec3(std::cos(phi), std::sin(phi), 0.0);
-  return out;
+  return refineDirection(x, Vec3(std::cos(centre), std::sin(centre), 0.0), ws);
 }
 
 IntegralDirection::Minimum IntegralDirection::minimum3D(const Vec3& x, const Vec3* near, Workspace& ws) const
@@ -402,7 +404,8 @@ IntegralDirection::Minimum IntegralDirection::minimum3D(const Vec3& x, const Vec
   }
   // Candidates: the 13 directions of a cube's axes, face and body diagonals (every unoriented
   // direction is within 35 degrees of one), plus the centre-of-mass eigenvectors, which are
-  // usually within a few degrees of n_I near the cloud.
+  // usually within a few degrees of n_I near the cloud. They are ranked by the rough e_I (a
+  // quarter of the nodes): the best only has to lie in the right basin, Newton does the rest.
   std::vector<Vec3> candidates;
   candidates.reserve(16);
   for (int i = -1; i <= 1; ++i)
@@ -436,7 +439,7 @@ IntegralDirection::Minimum IntegralDirection::minimum3D(const Vec3& x, const Vec
   double eMin = std::numeric_limits<double>::infinity();
   for (const Vec3& c : candidates)
   {
-    const double e = Integral.value(x, c, ws);
+    const double e = Integral.roughValue(x, c, ws);
     if (e < eMin)
     {
       eMin = e;
@@ -456,7 +459,32 @@ DirectionFit IntegralDirection::fit(const Vec3& x, DirectionMemory& memory, Work
   const bool warm = memory.valid && (x - memory.point).norm() <= warmReach * Params.h;
   const Minimum least = dimension() == 2 ? minimum2D(x, warm ? &memory.n : nullptr, ws)
                                          : minimum3D(x, warm ? &memory.n : nullptr, ws);
-  const Across across = leastEnergyOrthogonalTo(x, least.n, warm ? &memory.across : nullptr, ws);
+  // For a quadratic form e(a) = a^T M a the tilt Hessian at its least eigenvector is
+  // 2 (M - lambda_0) on the tangent plane, so e_perp = e_min + (least Hessian eigenvalue) / 2, in
+  // the direction of its eigenvector. e_I is not quadratic: the estimate serves only where the
+  // caller wants to know whether n is defined and it is clearly so (at 0.05, 5000 times the
+  // default threshold; the exact search decides below that).
+  const bool soft = least.softest.allFinite() && least.softest.squaredNorm() > 0.0;
+  constexpr double clearlyDefined = 0.05;
+  if (memory.estimateStability && soft && std::isfinite(least.softCurvature))
+  {
+    const Direction estimate =
+      finishDirection(least.n, least.value, least.value + 0.5 * least.softCurvature, Params.minStability);
+    if (estimate.stability >= std::max(clearlyDefined, Params.minStability))
+    {
+      memory.valid = least.n.allFinite();
+      memory.point = x;
+      memory.n = least.n;
+      memory.across = least.softest;
+      memory.stabilityEstimated = true;
+      return { estimate, nullptr };
+    }
+  }
+  // e_perp's search starts from the last iterate's answer, else from where the tilt Hessian
+  // says e_I grows least.
+  const Vec3* acrossStart = warm ? &memory.across : soft ? &least.softest : nullptr;
+  const Across across = leastEnergyOrthogonalTo(x, least.n, acrossStart, ws);
+  memory.stabilityEstimated = false;
   memory.valid = least.n.allFinite() && across.direction.allFinite();
   memory.point = x;
   memory.n = least.n;

@@ -834,6 +834,25 @@ Vec3 approximateSqDistanceGradient(const Neighbourhood& nb, double delta)
   return (-2.0 * centroid + 2.0 * nb.invH2 * moment) / nb.weightSum;
 }
 
+DeltaJet approximateSqDistanceJet(const Neighbourhood& nb, const Vec3& a)
+{
+  const auto w = nb.w();
+  const double weightSum = nb.weightSum;
+  DeltaJet out;
+  out.value = (w * nb.d2()).sum() / weightSum;
+  const auto spread = w * (nb.d2() - out.value);
+  const auto along = a.x() * nb.x() + a.y() * nb.y() + a.z() * nb.z(); // <a, r_i>
+  const Vec3 m = Vec3((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum()) / weightSum;
+  const Vec3 t = Vec3((spread * nb.x()).sum(), (spread * nb.y()).sum(), (spread * nb.z()).sum()) / weightSum;
+  const double k = nb.invH2;
+  out.gradient = -2.0 * m + 2.0 * k * t;
+  const double am = a.dot(m);
+  const double alongCovariance = (w * along.square()).sum() / weightSum - am * am;
+  const double alongSpread = (spread * along.square()).sum() / weightSum;
+  out.curvature = 2.0 - 8.0 * k * alongCovariance + 4.0 * k * k * (alongSpread - 2.0 * a.dot(t) * am);
+  return out;
+}
+
 DistanceField::DistanceField(const PointIndex& index, const SurfaceParameters& params)
   : Index(index)
   , Params(params)
@@ -863,6 +882,17 @@ double DistanceField::deltaAndGradient(const Vec3& y, Workspace& ws, Vec3& gradi
   const double d = approximateSqDistance(nb);
   gradient = approximateSqDistanceGradient(nb, d);
   return d;
+}
+
+DeltaJet DistanceField::jet(const Vec3& y, const Vec3& a, Workspace& ws, double* nearestSqDist) const
+{
+  Neighbourhood& nb = ws.field;
+  gatherNeighbourhood(Index, Params, y, nb, ws);
+  if (nearestSqDist)
+  {
+    *nearestSqDist = nb.minSqDist;
+  }
+  return approximateSqDistanceJet(nb, a);
 }
 
 } // namespace pss

@@ -178,6 +178,24 @@ double approximateSqDistance(const Neighbourhood& nb);
  */
 Vec3 approximateSqDistanceGradient(const Neighbourhood& nb, double delta);
 
+/// delta, its gradient and its second derivative along a unit direction a, from one neighbourhood.
+struct DeltaJet
+{
+  double value = 0.0;
+  Vec3 gradient = Vec3::Zero();
+  double curvature = 0.0; ///< a^T (Hessian of delta) a
+};
+
+/**
+ * delta, grad delta and a^T H a, H the Hessian of delta. With theta_N the normalized weights,
+ * r_i = p_i - y, m = sum theta_N r_i and T = sum theta_N (d_i^2 - delta) r_i, differentiating the
+ * gradient above once more gives
+ *   H = 2 I - (8 / h^2) Cov + (4 / h^4) (sum theta_N (d_i^2 - delta) r_i r_i^T - T m^T - m T^T),
+ * Cov the covariance about the centroid; along a it needs two more weighted sums of <a, r_i>^2.
+ * (A single point gives H = 2 I, the Hessian of |y - p|^2.)
+ */
+DeltaJet approximateSqDistanceJet(const Neighbourhood& nb, const Vec3& a);
+
 /// delta(y) and its gradient evaluated straight from the index, in Workspace::field.
 class DistanceField
 {
@@ -187,6 +205,8 @@ public:
   /// delta and grad delta at once (the gradient needs delta anyway); optionally the squared
   /// distance from y to the nearest cloud point.
   double deltaAndGradient(const Vec3& y, Workspace& ws, Vec3& gradient, double* nearestSqDist = nullptr) const;
+  /// delta, its gradient and its curvature along @p a (see approximateSqDistanceJet).
+  DeltaJet jet(const Vec3& y, const Vec3& a, Workspace& ws, double* nearestSqDist = nullptr) const;
 
 private:
   const PointIndex& Index;

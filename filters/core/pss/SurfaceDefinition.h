@@ -39,6 +39,12 @@ struct DirectionMemory
   Vec3 point = Vec3::Zero();  ///< where the last n was found
   Vec3 n = Vec3::Zero();      ///< that n
   Vec3 across = Vec3::Zero(); ///< the least-energy direction orthogonal to it (for the stability)
+  /// Set by the caller: the stability of this fit only decides whether n is defined (a
+  /// projection's intermediate iterates), so a rule may estimate it where it is clearly above
+  /// the threshold (n_I: from the tilt Hessian, see IntegralDirection::fit).
+  bool estimateStability = false;
+  /// Set by the rule: the last fit's stability was such an estimate.
+  bool stabilityEstimated = false;
 };
 
 /// A direction with the neighbourhood of x it was fitted from, for rules that fit one.

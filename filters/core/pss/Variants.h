@@ -11,6 +11,8 @@
 #include "pss/Quadrature.h"
 #include "pss/SurfaceDefinition.h"
 
+#include <limits>
+
 namespace pss
 {
 
@@ -76,6 +78,9 @@ private:
  * The slope along the normal is the same sum of p delta^(p-1) a . grad delta; tilting the plane
  * by an angle towards an in-plane axis moves each node along a in proportion to its coordinate
  * on that axis, so the tilt gradient is one more sum over the same nodes (see integrate()).
+ * The second derivatives (curvature along a, tilt Hessian) need only delta's curvature along a
+ * at each node besides its gradient (approximateSqDistanceJet): the line search and the search
+ * for n_I take Newton steps without extra integrals to difference.
  */
 class IntegralEnergy : public Energy
 {
@@ -87,13 +92,23 @@ public:
     Vec3 a, b1, b2;
   };
 
-  /// e_I over a frame's plane, with (when asked) its slope along a and its tilt gradient: the
-  /// derivatives of e_I as a turns towards b1 and towards b2 with the plane pivoting about x.
+  /// How many derivatives integrate() computes.
+  enum class Derivatives
+  {
+    None,      ///< the value only
+    UpToSecond ///< and slope, tilt, curvature, tiltHessian
+  };
+
+  /// e_I over a frame's plane, with (when asked) its first and second derivatives along a (the
+  /// plane moving along its normal) and in tilt (a turning towards b1 and b2, the plane pivoting
+  /// about x; coordinates of IntegralEnergy::tilted, so Newton's steps mean what they say).
   struct PlaneIntegral
   {
     double value = 0.0;
     double slope = 0.0;
     Eigen::Vector2d tilt = Eigen::Vector2d::Zero();
+    double curvature = 0.0;
+    Eigen::Matrix2d tiltHessian = Eigen::Matrix2d::Zero();
   };
 
   IntegralEnergy(const PointIndex& index, const SurfaceParameters& params);
@@ -103,28 +118,36 @@ public:
   Frame frameOf(const Vec3& a) const;
   /// The frame turned by the tangent step (radians, in b1/b2 coordinates), axes carried along.
   static Frame tilted(const Frame& f, const Eigen::Vector2d& step);
-  PlaneIntegral integrate(const Vec3& x, const Frame& f, bool derivatives, Workspace& ws) const;
+  PlaneIntegral integrate(const Vec3& x, const Frame& f, Derivatives order, Workspace& ws) const;
+  /// e_I with a rule of order at most 3 (9 nodes in 3D instead of 36 at the default order 6):
+  /// good enough to rank candidate directions before Newton's method refines the best with the
+  /// full rule, not to replace it (order 3 is off by about 2e-3 relative, order 6 by 2e-4).
+  double roughValue(const Vec3& x, const Vec3& a, Workspace& ws) const;
 
 private:
+  PlaneIntegral sum(const Vec3& x, const Frame& f, Derivatives order, const GaussHermiteRule& rule, Workspace& ws) const;
+
   const PointIndex& Index;
   const SurfaceParameters Params;
   GaussHermiteRule Rule;
+  GaussHermiteRule RoughRule;
   DistanceField Field;
 };
 
 /**
  * @brief n_I = argmin over unit a of e_I(x, a) (Sec. 5).
  *
- * In 2D a scan of the half circle refined by golden-section search; in 3D the best of a fixed set
- * of candidate directions (13 lattice directions plus the centre-of-mass eigenvectors), refined
- * by Newton's method on the sphere with the analytic tilt gradient (the Hessian is a difference of
- * two such gradients). Within a projection (a warm DirectionMemory), an iterate less than h/10
- * from the last one starts Newton from the last n_I instead of scanning the candidates, and the
- * e_perp search from the last e_perp direction: about half the e_I of a cold search. Such a short
- * step cannot carry n_I far, but where two minima of e_I over directions are nearly equal the
- * warm search keeps following the one it had. Stability is (e_perp - e_min) / (e_perp + e_min),
- * e_perp the least energy over directions orthogonal to n_I: for a quadratic form this is exactly
- * the eigenvalue measure the other rules report.
+ * The best of a set of candidate directions (in 2D 36 across the half circle; in 3D the 13
+ * lattice directions plus the centre-of-mass eigenvectors), ranked by a rough e_I (a rule of
+ * order 3), is refined by Newton's method on the circle or sphere with the analytic tilt gradient
+ * and Hessian and the full rule. Within a projection (a warm DirectionMemory), an iterate less
+ * than h/10 from the last one starts Newton from the last n_I instead of ranking candidates, and
+ * the e_perp search from the last e_perp direction. Such a short step cannot carry n_I far, but
+ * where two minima of e_I over directions are nearly equal the warm search keeps following the
+ * one it had. Stability is (e_perp - e_min) / (e_perp + e_min), e_perp the least energy over
+ * directions orthogonal to n_I: for a quadratic form this is exactly the eigenvalue measure the
+ * other rules report. Where the caller only needs to know that n is defined (a projection's
+ * intermediate iterates), e_perp may be estimated from the tilt Hessian (see fit()).
  */
 class IntegralDirection : public DirectionRule
 {
@@ -138,6 +161,11 @@ private:
   {
     Vec3 n = Vec3::Zero();
     double value = 0.0;
+    /// 3D: the direction orthogonal to n towards which e_I grows least (the tilt Hessian's
+    /// softest eigenvector), where the search for e_perp starts; zero when unknown.
+    Vec3 softest = Vec3::Zero();
+    /// 3D: the tilt Hessian's least eigenvalue there (NaN when unknown).
+    double softCurvature = std::numeric_limits<double>::quiet_NaN();
   };
   /// The least e_I over the directions orthogonal to n_I, and where it is.
   struct Across
