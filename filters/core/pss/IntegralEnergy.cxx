@@ -360,40 +360,28 @@ Direction finishDirection(const Vec3& n, double eMin, double ePerp, double minSt
 
 IntegralDirection::Minimum IntegralDirection::minimum2D(const Vec3& x, const Vec3* near, Workspace& ws) const
 {
-  // Scan the half circle of unoriented directions, then refine the best sample by Newton's
-  // method (refineDirection; in 2D the tilt has one component). From the last iterate's n_I,
-  // three samples bracket the minimum when the middle one is the least (else the scan runs, on
-  // the rough e_I: it only has to find the basin).
-  constexpr int samples = 36;
-  const double step = M_PI / samples;
-  auto energyAt = [&](double phi) { return Integral.value(x, Vec3(std::cos(phi), std::sin(phi), 0.0), ws); };
-  auto roughEnergyAt = [&](double phi) {
-    return Integral.roughValue(x, Vec3(std::cos(phi), std::sin(phi), 0.0), ws);
-  };
-  double centre = 0.0;
-  bool bracketed = false;
+  // From the last iterate's n_I, Newton's method (refineDirection; in 2D the tilt has one
+  // component) as in 3D. Else 18 samples of the half circle of unoriented directions, 10 degrees
+  // apart, ranked by the rough e_I (the minima of e_I over directions that a projection must tell
+  // apart, such as a corner's two normals, lie much farther apart), and Newton from the best.
   if (near)
   {
-    centre = std::atan2(near->y(), near->x());
-    const double e = energyAt(centre);
-    bracketed = e <= energyAt(centre - step) && e <= energyAt(centre + step);
+    return refineDirection(x, *near, ws);
   }
-  if (!bracketed)
+  constexpr int samples = 18;
+  auto direction = [](double phi) { return Vec3(std::cos(phi), std::sin(phi), 0.0); };
+  int best = 0;
+  double bestValue = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < samples; ++k)
   {
-    int best = 0;
-    double bestValue = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < samples; ++k)
+    const double e = Integral.roughValue(x, direction(k * M_PI / samples), ws);
+    if (e < bestValue)
     {
-      const double e = roughEnergyAt(k * step);
-      if (e < bestValue)
-      {
-        bestValue = e;
-        best = k;
-      }
+      bestValue = e;
+      best = k;
     }
-    centre = best * step;
   }
-  return refineDirection(x, Vec3(std::cos(centre), std::sin(centre), 0.0), ws);
+  return refineDirection(x, direction(best * M_PI / samples), ws);
 }
 
 IntegralDirection::Minimum IntegralDirection::minimum3D(const Vec3& x, const Vec3* near, Workspace& ws) const
