@@ -81,6 +81,7 @@ int main(int argc, char** argv)
   std::vector<std::string> positional;
   pss_metrics::MetricOptions options;
   double unit = 1e-6;
+  double loops = 0.0; // > 0: classify the boundary loops, with this gap distance (MaxDistance, 1 h)
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -98,6 +99,8 @@ int main(int argc, char** argv)
       options.completenessThreshold = value();
     else if (a == "--unit")
       unit = value();
+    else if (a == "--loops")
+      loops = value();
     else if (a == "--help" || a == "-h")
     {
       std::cout << "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U]\n";
@@ -118,5 +121,11 @@ int main(int argc, char** argv)
   const pss_metrics::MeshQuality q =
     pss_metrics::MeasureMesh(mesh, reference, cloud ? cloud->GetPoints() : nullptr, options);
   std::cout << pss_metrics::Describe(q, unit, unit == 1e-6 ? "um" : "units");
+  if (loops > 0.0)
+  {
+    const pss_metrics::BoundaryReport b = pss_metrics::ClassifyBoundary(
+      mesh, reference, cloud ? cloud->GetPoints() : nullptr, 3.0 * loops, loops);
+    std::cout << pss_metrics::DescribeBoundary(b, unit * 1000.0, unit == 1e-6 ? "mm" : "units");
+  }
   return 0;
 }

@@ -48,6 +48,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pss
@@ -162,6 +163,10 @@ private:
   bool isUnfolded(const Vec3& face, const Vec3& vertexNormals) const;
   /// The simple border loops of @p mesh of at most maxHoleEdges edges, each in its triangles' winding.
   std::vector<std::vector<std::uint32_t>> smallHoles(const SurfaceMesh& mesh) const;
+  /// The unfolded triangulation of least area of @p hole's own vertices whose new edges are not in
+  /// @p edges (sorted (lower, higher) vertex pairs), or none.
+  std::vector<std::array<std::uint32_t, 3>> triangulateHole(const std::vector<std::uint32_t>& hole,
+    const SurfaceMesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) const;
   void closeSmallHoles(SurfaceMesh& mesh, Workspace& ws);
 
   const SurfaceDefinition& Surface;

@@ -285,4 +285,12 @@ TEST(MeshFilter, StanfordBunny)
   EXPECT_EQ(q.spuriousShare, 0.0);
   EXPECT_GE(q.largestComponentShare, 0.999);
   EXPECT_EQ(q.nonManifoldEdges, 0u);
+  // Boundary edges only around the scan's real holes: every boundary loop is sorted as at one of
+  // bun_zipper.ply's own holes (half its vertices within 3 h of bun_zipper's border), at a gap of
+  // the scans (no cloud point within MaxDistance, 1 h, of its centre), or other.
+  const pss_metrics::BoundaryReport b =
+    pss_metrics::ClassifyBoundary(mesh, reference->GetOutput(), cloud->GetOutput()->GetPoints(), 3.0 * h, h);
+  std::cout << pss_metrics::DescribeBoundary(b, 1e-3, "mm");
+  EXPECT_EQ(b.referenceLoops, 5u);
+  EXPECT_LE(b.edges[pss_metrics::BoundaryLoop::Other], std::size_t(100000));
 }
