@@ -161,6 +161,8 @@ private:
   std::uint32_t crossingOn(std::uint32_t lower, std::uint32_t upper, int direction);
   /// True when a cell of normal @p face (unnormalized) is within maxFoldAngle of @p vertexNormals' sum.
   bool isUnfolded(const Vec3& face, const Vec3& vertexNormals) const;
+  /// True when a triangle a, b, c that closes a hole is unfolded, or is a sliver facing @p vertexNormals' side.
+  bool closesFlat(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& vertexNormals) const;
   /// The simple border loops of @p mesh of at most maxHoleEdges edges, each in its triangles' winding.
   std::vector<std::vector<std::uint32_t>> smallHoles(const SurfaceMesh& mesh) const;
   /// The unfolded triangulation of least area of @p hole's own vertices whose new edges are not in

@@ -348,6 +348,21 @@ bool SurfaceMesher::isUnfolded(const Vec3& face, const Vec3& vertexNormals) cons
     face.dot(vertexNormals) >= foldCos * face.norm() * vertexNormals.norm();
 }
 
+bool SurfaceMesher::closesFlat(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& vertexNormals) const
+{
+  // A sliver (thinner than a tenth of a cell across its longest side) only has to face its
+  // vertices' side: the direction of so thin a triangle says more about the last digits of its
+  // vertices' projections than about a fold, and closing it moves nothing off the surface. The
+  // outline of a lone triangle or flap, walked as a hole, faces the other side and stays open.
+  const Vec3 face = (b - a).cross(c - a);
+  if (isUnfolded(face, vertexNormals))
+  {
+    return true;
+  }
+  const double longest = std::max({ (b - a).norm(), (c - b).norm(), (a - c).norm() });
+  return face.dot(vertexNormals) > 0.0 && face.norm() <= 0.1 * Cell * longest;
+}
+
 std::vector<std::vector<std::uint32_t>> SurfaceMesher::smallHoles(const SurfaceMesh& mesh) const
 {
   // A border edge is the side of one triangle; the hole beside it is walked from each border
@@ -466,12 +481,13 @@ std::vector<std::array<std::uint32_t, 3>> SurfaceMesher::triangulateHole(const s
         }
         // The border runs hole[i] -> hole[i + 1]: the triangles that close it run the other way.
         const Vec3& a = mesh.points[hole[j]];
-        const Vec3 face = (mesh.points[hole[m]] - a).cross(mesh.points[hole[i]] - a);
-        if (!isUnfolded(face, mesh.normals[hole[i]] + mesh.normals[hole[m]] + mesh.normals[hole[j]]))
+        const Vec3& b = mesh.points[hole[m]];
+        const Vec3& c = mesh.points[hole[i]];
+        if (!closesFlat(a, b, c, mesh.normals[hole[i]] + mesh.normals[hole[m]] + mesh.normals[hole[j]]))
         {
           continue;
         }
-        const double total = sub + 0.5 * face.norm();
+        const double total = sub + 0.5 * (b - a).cross(c - a).norm();
         if (total < cost[i * k + j])
         {
           cost[i * k + j] = total;
@@ -577,8 +593,7 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
     auto at = [&](std::uint32_t v) -> const Vec3& { return v == apexIndex ? apex : mesh.points[v]; };
     auto normalAt = [&](std::uint32_t v) -> const Vec3& { return v == apexIndex ? apexNormal : mesh.normals[v]; };
     const bool flat = !fill.empty() && std::all_of(fill.begin(), fill.end(), [&](const std::array<std::uint32_t, 3>& t) {
-      const Vec3 face = (at(t[1]) - at(t[0])).cross(at(t[2]) - at(t[0]));
-      return isUnfolded(face, normalAt(t[0]) + normalAt(t[1]) + normalAt(t[2]));
+      return closesFlat(at(t[0]), at(t[1]), at(t[2]), normalAt(t[0]) + normalAt(t[1]) + normalAt(t[2]));
     });
     if (!flat && k > 3)
     {
