@@ -68,6 +68,11 @@ struct MeshOptions
   /// 3D: connected pieces of a smaller area, in units of h^2, are removed. 0 (the default) keeps
   /// every piece: on the bunny the islands are bits of real surface inside holes of the main piece.
   double minPieceArea = 0.0;
+  /// 3D: pieces smaller than this, in units of h^2, other than the largest, are removed when every
+  /// vertex of theirs lies within 3 h of the largest piece's interior (its nearest vertex of the
+  /// largest piece is not on a border): a second layer over surface the largest piece already
+  /// covers (on the bunny, islands that stray scan points define). 0 keeps them.
+  double coveredPieceArea = 10.0;
   std::size_t maxBandCells = std::size_t(1) << 24; ///< refuse larger bands (about 60 bytes a cell)
   /// How crossings are projected (Definition 1 by default). The tolerance is 1e-5 h, not the
   /// projection's 1e-6 h: vertices need no better, and the integral energy's steps can hover
@@ -94,6 +99,7 @@ struct MeshStatistics
   std::size_t droppedSimplices = 0;   ///< triangles (segments) dropped, with those vertices or folded
   std::size_t foldedSimplices = 0;    ///< of which: cells turned more than maxFoldAngle off their vertices' n
   std::size_t removedPieces = 0;      ///< pieces smaller than MeshOptions::minPieceArea (3D)
+  std::size_t coveredPieces = 0;      ///< small pieces over the largest one (MeshOptions::coveredPieceArea)
   std::size_t closedHoles = 0;        ///< small holes closed (3D: see MeshOptions::maxHoleEdges)
   std::size_t components = 0;         ///< connected pieces of the result
   std::size_t boundaryEdges = 0;      ///< edges of one triangle (3D); polyline ends (2D)

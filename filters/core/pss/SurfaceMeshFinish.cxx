@@ -195,6 +195,113 @@ void forEachEdge(const EdgeList& e, Visit&& visit)
   }
 }
 
+// Per vertex: whether it is in a piece of @p triangles, other than the largest, smaller than
+// @p maxArea, whose every vertex has for nearest vertex of the largest piece within @p reach an
+// interior one (not on its border): a second layer over surface that the largest piece already
+// covers. A piece beside a hole of the largest piece has border vertices of it nearest, and stays.
+// Counts the covered pieces in @p coveredPieces.
+std::vector<char> coveredPieces(const std::vector<std::array<std::uint32_t, 3>>& triangles, const std::vector<Vec3>& points,
+  double maxArea, double reach, std::size_t& coveredPieces)
+{
+  coveredPieces = 0;
+  std::vector<char> covered(points.size(), 0);
+  if (maxArea <= 0.0 || triangles.empty())
+  {
+    return covered;
+  }
+  Pieces pieces = piecesOf(triangles, points);
+  const auto largest = static_cast<std::size_t>(std::max_element(pieces.measure.begin(), pieces.measure.end()) - pieces.measure.begin());
+  std::vector<char> used(points.size(), 0);
+  for (const auto& t : triangles)
+  {
+    used[t[0]] = used[t[1]] = used[t[2]] = 1;
+  }
+  std::vector<char> border(points.size(), 0);
+  forEachEdge(edgesOf(triangles, points.size()), [&](std::uint32_t a, std::uint32_t b, std::uint32_t sides, bool) {
+    if (sides == 1)
+    {
+      border[a] = border[b] = 1;
+    }
+  });
+  // The largest piece's vertices hashed by their cell of side reach: the nearest within reach is
+  // in the 27 cells about a vertex's own.
+  auto cellOf = [&](const Vec3& p) {
+    std::array<long long, 3> c{};
+    for (int a = 0; a < 3; ++a)
+    {
+      c[a] = static_cast<long long>(std::floor(p[a] / reach));
+    }
+    return c;
+  };
+  auto keyOf = [](const std::array<long long, 3>& c) {
+    std::uint64_t k = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      k = (k << 21) | (static_cast<std::uint64_t>(c[a]) & ((std::uint64_t(1) << 21) - 1));
+    }
+    return k;
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> hashed;
+  std::vector<std::uint32_t> candidates; // vertices of small pieces other than the largest
+  for (std::size_t v = 0; v < points.size(); ++v)
+  {
+    if (!used[v])
+    {
+      continue;
+    }
+    const std::size_t root = pieces.sets.find(v);
+    if (root == largest)
+    {
+      hashed.emplace_back(keyOf(cellOf(points[v])), static_cast<std::uint32_t>(v));
+    }
+    else if (pieces.measure[root] < maxArea)
+    {
+      candidates.push_back(static_cast<std::uint32_t>(v));
+    }
+  }
+  std::sort(hashed.begin(), hashed.end());
+  std::vector<char> uncovered(points.size(), 0); // per piece root: a vertex of it is not over the largest piece
+  for (const std::uint32_t v : candidates)
+  {
+    const std::array<long long, 3> c = cellOf(points[v]);
+    double best = reach * reach;
+    std::uint32_t nearest = static_cast<std::uint32_t>(-1);
+    for (long long dx = -1; dx <= 1; ++dx)
+    {
+      for (long long dy = -1; dy <= 1; ++dy)
+      {
+        for (long long dz = -1; dz <= 1; ++dz)
+        {
+          const std::uint64_t k = keyOf({ { c[0] + dx, c[1] + dy, c[2] + dz } });
+          for (auto it = std::lower_bound(hashed.begin(), hashed.end(), std::make_pair(k, std::uint32_t(0)));
+               it != hashed.end() && it->first == k; ++it)
+          {
+            const double d2 = (points[it->second] - points[v]).squaredNorm();
+            if (d2 < best || (d2 == best && it->second < nearest))
+            {
+              best = d2;
+              nearest = it->second;
+            }
+          }
+        }
+      }
+    }
+    if (nearest == static_cast<std::uint32_t>(-1) || border[nearest])
+    {
+      uncovered[pieces.sets.find(v)] = 1;
+    }
+  }
+  std::vector<char> counted(points.size(), 0);
+  for (const std::uint32_t v : candidates)
+  {
+    const std::size_t root = pieces.sets.find(v);
+    covered[v] = uncovered[root] ? 0 : 1;
+    coveredPieces += covered[v] && !counted[root] ? 1 : 0;
+    counted[root] = 1;
+  }
+  return covered;
+}
+
 } // namespace
 
 void countTopology(SurfaceMesh& mesh)
@@ -300,7 +407,10 @@ SurfaceMesh SurfaceMesher::finish(Workspace& ws)
     const double h = Surface.h();
     const std::vector<char> large =
       largePieces(kept, point, Options.minPieceArea * h * h, Statistics.removedPieces);
-    mesh.triangles = keepCells(kept, n, [&](const std::array<std::uint32_t, 3>& t) { return large[t[0]] != 0; }, newIndex);
+    const std::vector<char> covered =
+      coveredPieces(kept, point, Options.coveredPieceArea * h * h, 3.0 * h, Statistics.coveredPieces);
+    mesh.triangles = keepCells(
+      kept, n, [&](const std::array<std::uint32_t, 3>& t) { return large[t[0]] != 0 && covered[t[0]] == 0; }, newIndex);
     Statistics.droppedSimplices = Triangles.size() - mesh.triangles.size();
   }
   else
