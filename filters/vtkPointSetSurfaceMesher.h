@@ -138,9 +138,11 @@ public:
   ///@{
   /**
    * 3D: a hole of the mesh bounded by at most this many edges is closed by a fan about the
-   * projection of its centre, when that projection is in the domain and the fan does not fold
-   * (a seam of the orientation or a dropped crossing left it, not the end of the domain). 0 (or
-   * 1, 2) closes none. Within [0, 1000]. Default 20.
+   * projection of its centre, when that projection is in the domain and the fan does not fold,
+   * else, when the scan has data at its centre (a cloud point within MaxDistance), by the
+   * least-area unfolded triangulation of its own vertices (a seam of the orientation or a dropped
+   * crossing left it, not the end of the domain). A pinched hole is closed as the simple loops it
+   * is made of. 0 (or 1, 2) closes none. Within [0, 1000]. Default 20.
    */
   vtkSetClampMacro(MaxHoleEdges, int, 0, 1000);
   vtkGetMacro(MaxHoleEdges, int);

@@ -29,13 +29,16 @@
  *    moved to their projections (projectVertices), is within maxFoldAngle of its vertices' n (a
  *    cell whose crossings projected onto two different sheets, or folded over, is not). The
  *    unused vertices are dropped and the mesh's topology is counted. In 3D, connected pieces
- *    smaller than minPieceArea h^2 are removed when asked (islands of a few cells).
- * 7. close: a hole of the result bounded by at most maxHoleEdges edges, with no vertex shared by
- *    two borders, is closed by a fan about the projection of its vertices' centroid, when that
- *    projection is InDomain, travelled at most maxVertexTravel cells, and no triangle of the fan
- *    folds (maxFoldAngle); a hole of three edges by one triangle. Such holes are where a seam of
- *    the orientation, a fold or one dropped crossing left a few cells out, not where the domain
- *    ends: the surface is defined at their centre, so the mesh covers it.
+ *    smaller than minPieceArea h^2 are removed when asked (islands of a few cells), and small
+ *    pieces lying over the largest piece's interior (coveredPieceArea) are.
+ * 7. close: a hole of the result bounded by at most maxHoleEdges edges (a pinched border is cut
+ *    into its simple loops) is closed by a fan about the projection of its vertices' centroid,
+ *    when that projection is InDomain, travelled at most maxVertexTravel cells, and no triangle of
+ *    the fan folds (maxFoldAngle); a hole of three edges by one triangle. Where the fan fails but
+ *    the cloud has a point within maxDistance of the centre, by the least-area triangulation of the
+ *    hole's own vertices whose triangles do not fold. Such holes are where a seam of the
+ *    orientation, a fold or one dropped crossing left a few cells out, not where the domain ends:
+ *    the scan has data there, so the mesh covers it.
  * Every stage is deterministic: the result does not depend on the number of threads.
  */
 #pragma once
