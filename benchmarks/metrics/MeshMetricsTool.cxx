@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U]
+ * pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U] [--loops H]
  *
  * Prints the comparison of the mesh issue for any triangle mesh (ours, MeshLab's, Poisson's):
  * accuracy (mesh to REFERENCE), completeness (REFERENCE's vertices to the mesh, and the share
  * beyond --threshold), the share of the mesh's area farther than --spurious from every CLOUD point,
  * and its topology. Distances in the files' units; --unit scales the printout (default 1e-6: um
- * for files in metres). Meshes: .vtp .ply .stl .obj.
+ * for files in metres). --loops H also sorts every boundary loop of the mesh: at one of REFERENCE's
+ * own holes (half its vertices within 3 H of REFERENCE's border), at a gap of the scan (no CLOUD
+ * point within H of its centre; H = the mesher's MaxDistance, 1 h), or other (ClassifyBoundary),
+ * and lists them in mm (for files in metres). Meshes: .vtp .ply .stl .obj.
  */
 #include "MeshMetrics.h"
 
@@ -103,7 +106,7 @@ int main(int argc, char** argv)
       loops = value();
     else if (a == "--help" || a == "-h")
     {
-      std::cout << "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U]\n";
+      std::cout << "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U] [--loops H]\n";
       return 0;
     }
     else
@@ -111,7 +114,7 @@ int main(int argc, char** argv)
   }
   if (positional.size() < 2 || positional.size() > 3)
   {
-    std::cerr << "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U]\n";
+    std::cerr << "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U] [--loops H]\n";
     return 2;
   }
   vtkSMPTools::SetBackend("STDThread");
@@ -125,7 +128,8 @@ int main(int argc, char** argv)
   {
     const pss_metrics::BoundaryReport b = pss_metrics::ClassifyBoundary(
       mesh, reference, cloud ? cloud->GetPoints() : nullptr, 3.0 * loops, loops);
-    std::cout << pss_metrics::DescribeBoundary(b, unit * 1000.0, unit == 1e-6 ? "mm" : "units");
+    // Loops are millimetres across: listed in mm for files in metres, else in the files' units.
+    std::cout << pss_metrics::DescribeBoundary(b, unit == 1e-6 ? 1e-3 : unit, unit == 1e-6 ? "mm" : "units");
   }
   return 0;
 }
