@@ -99,9 +99,9 @@ TEST(Mesh, SmallHolesAreClosedOnTheSurface)
 {
   // A seam angle of 5.5 degrees skips the few cells across which the sphere's own normal turns a
   // little more (up to about 6 degrees along a cell's diagonal at radius 20 h): scattered small
-  // holes where the surface is plainly defined (measured: 198 boundary edges, none after closing:
-  // fans about the holes' centres, and the pinched holes and those whose fan folds from their own
-  // vertices; 5.4 and 5.6 degrees pass too, 5.0 tears the sphere apart). Closing them must leave a
+  // holes where the surface is plainly defined (measured: 198 boundary edges, none after closing;
+  // 8 were left before pinched holes and holes whose fan folds were closed from their own
+  // vertices too; 5.4 and 5.6 degrees pass too, 5.0 tears the sphere apart). Closing them must leave a
   // closed sphere with every vertex, the fans' centres too, on it, normals outward and triangles
   // wound about them.
   const pss::PointIndex index = indexOf(sphereSpec());
