@@ -584,10 +584,12 @@ int Mesh(const std::vector<std::string>& args)
     [&](const std::string& v) { mesher->SetMaxSeamAngle(pss_cli::ToDouble("max-seam-angle", v)); });
   t.Value("max-fold-angle", "DEG", "drop triangles whose normal is farther off their vertices' n (default 60)",
     [&](const std::string& v) { mesher->SetMaxFoldAngle(pss_cli::ToDouble("max-fold-angle", v)); });
-  t.Value("max-hole-edges", "N", "3D: close holes of at most N edges where their centre is in the domain (default 20)",
+  t.Value("max-hole-edges", "N", "3D: close holes of at most N edges unless the scan has no data at their centre (default 20)",
     [&](const std::string& v) { mesher->SetMaxHoleEdges(pss_cli::ToInt("max-hole-edges", v)); });
   t.Value("min-piece-area", "A", "3D: remove pieces smaller than A h^2 (default 0: keep all)",
     [&](const std::string& v) { mesher->SetMinPieceArea(pss_cli::ToDouble("min-piece-area", v)); });
+  t.Value("covered-piece-area", "A", "3D: remove pieces smaller than A h^2 lying over the largest piece's interior (default 10; 0: keep all)",
+    [&](const std::string& v) { mesher->SetCoveredPieceArea(pss_cli::ToDouble("covered-piece-area", v)); });
   const std::optional<std::string> cloudPath = ParseCloudCommand("mesh", "CLOUD -o FILE [options]",
     "Meshes the point-set surface of CLOUD where it is defined: triangles in 3D (polylines in 2D) with\n"
     "Normals, Stability, Energy, DomainLabel and the classifier's evidence. .stl and .obj keep the geometry only.",

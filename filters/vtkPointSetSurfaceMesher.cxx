@@ -127,6 +127,7 @@ void AddStatistics(const pss::MeshStatistics& st, vtkFieldData* fd)
     { "SeamSimplices", static_cast<long long>(st.seamSimplices) },
     { "FoldedTriangles", static_cast<long long>(st.foldedSimplices) },
     { "RemovedPieces", static_cast<long long>(st.removedPieces) },
+    { "CoveredPieces", static_cast<long long>(st.coveredPieces) },
     { "ClosedHoles", static_cast<long long>(st.closedHoles) },
     { "UndefinedGridVertices", static_cast<long long>(st.undefinedVertices) },
     { "Components", static_cast<long long>(st.components) },
@@ -162,6 +163,7 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.maxFoldAngle = this->MaxFoldAngle;
   options.maxHoleEdges = static_cast<std::size_t>(this->MaxHoleEdges);
   options.minPieceArea = this->MinPieceArea;
+  options.coveredPieceArea = this->CoveredPieceArea;
   options.maxBandCells = static_cast<std::size_t>(this->MaximumNumberOfBandCells);
   options.projection.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.domain.maxDistance = this->MaxDistance;
@@ -214,5 +216,6 @@ void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxFoldAngle: " << this->MaxFoldAngle << "\n";
   os << indent << "MaxHoleEdges: " << this->MaxHoleEdges << "\n";
   os << indent << "MinPieceArea: " << this->MinPieceArea << "\n";
+  os << indent << "CoveredPieceArea: " << this->CoveredPieceArea << "\n";
   os << indent << "MaximumNumberOfBandCells: " << this->MaximumNumberOfBandCells << "\n";
 }

@@ -17,6 +17,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numeric>
 #include <random>
 #include <sstream>
 #include <vector>
@@ -129,7 +131,198 @@ std::vector<Vec3> SampleArea(const pss::SurfaceMesh& m, std::size_t count)
   return samples;
 }
 
+// The border loops of @p m, each in its triangles' winding: closed walks along the sides of one
+// triangle. Where a border passes twice through a vertex, the walk takes the first unused side out
+// of it, so a pinched border gives two loops (or one through the vertex twice).
+std::vector<std::vector<std::uint32_t>> BorderLoops(const pss::SurfaceMesh& m)
+{
+  struct Side
+  {
+    std::uint32_t low, high, from, to;
+  };
+  std::vector<Side> sides;
+  sides.reserve(3 * m.triangles.size());
+  for (const auto& t : m.triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = t[k];
+      const std::uint32_t b = t[(k + 1) % 3];
+      sides.push_back({ std::min(a, b), std::max(a, b), a, b });
+    }
+  }
+  std::sort(sides.begin(), sides.end(),
+    [](const Side& x, const Side& y) { return x.low != y.low ? x.low < y.low : x.high < y.high; });
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> border; // (from, to), sorted by from
+  for (std::size_t i = 0; i < sides.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < sides.size() && sides[j].low == sides[i].low && sides[j].high == sides[i].high)
+    {
+      ++j;
+    }
+    if (j - i == 1)
+    {
+      border.emplace_back(sides[i].from, sides[i].to);
+    }
+    i = j;
+  }
+  std::sort(border.begin(), border.end());
+  std::vector<char> used(border.size(), 0);
+  auto unusedOutOf = [&](std::uint32_t v) -> std::size_t {
+    auto it = std::lower_bound(border.begin(), border.end(), std::make_pair(v, std::uint32_t(0)));
+    for (auto i = static_cast<std::size_t>(it - border.begin()); i < border.size() && border[i].first == v; ++i)
+    {
+      if (!used[i])
+      {
+        return i;
+      }
+    }
+    return border.size();
+  };
+  std::vector<std::vector<std::uint32_t>> loops;
+  for (std::size_t s = 0; s < border.size(); ++s)
+  {
+    if (used[s])
+    {
+      continue;
+    }
+    std::vector<std::uint32_t> loop;
+    std::size_t e = s;
+    while (e < border.size())
+    {
+      used[e] = 1;
+      loop.push_back(border[e].first);
+      if (border[e].second == border[s].first)
+      {
+        break;
+      }
+      e = unusedOutOf(border[e].second);
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+double SegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
+{
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
 } // namespace
+
+BoundaryReport ClassifyBoundary(
+  vtkPolyData* mesh, vtkPolyData* reference, vtkPoints* cloud, double referenceDistance, double gapDistance)
+{
+  BoundaryReport report;
+  const pss::SurfaceMesh m = TrianglesOf(mesh);
+  const pss::SurfaceMesh r = TrianglesOf(reference);
+  std::vector<std::pair<Vec3, Vec3>> referenceBorder;
+  for (const auto& loop : BorderLoops(r))
+  {
+    ++report.referenceLoops;
+    for (std::size_t i = 0; i < loop.size(); ++i)
+    {
+      referenceBorder.emplace_back(r.points[loop[i]], r.points[loop[(i + 1) % loop.size()]]);
+    }
+  }
+  // The largest piece by area (a small union-find over the triangles' vertices).
+  std::vector<std::uint32_t> parent(m.points.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto find = [&](std::uint32_t x) {
+    while (parent[x] != x)
+    {
+      x = parent[x] = parent[parent[x]];
+    }
+    return x;
+  };
+  for (const auto& t : m.triangles)
+  {
+    for (int k = 1; k < 3; ++k)
+    {
+      const std::uint32_t a = find(t[0]);
+      const std::uint32_t b = find(t[k]);
+      parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  std::vector<double> area(m.points.size(), 0.0);
+  for (const auto& t : m.triangles)
+  {
+    area[find(t[0])] += 0.5 * (m.points[t[1]] - m.points[t[0]]).cross(m.points[t[2]] - m.points[t[0]]).norm();
+  }
+  const auto largest = static_cast<std::uint32_t>(std::max_element(area.begin(), area.end()) - area.begin());
+
+  vtkNew<vtkPolyData> cloudData;
+  vtkNew<vtkStaticPointLocator> locator;
+  if (cloud && cloud->GetNumberOfPoints() > 0)
+  {
+    cloudData->SetPoints(cloud);
+    locator->SetDataSet(cloudData);
+    locator->BuildLocator();
+  }
+  for (const auto& loop : BorderLoops(m))
+  {
+    BoundaryLoop b;
+    b.edges = loop.size();
+    Vec3 c = Vec3::Zero();
+    std::vector<double> toRef;
+    for (const std::uint32_t v : loop)
+    {
+      c += m.points[v] / static_cast<double>(loop.size());
+      double d = std::numeric_limits<double>::infinity();
+      for (const auto& seg : referenceBorder)
+      {
+        d = std::min(d, SegmentDistance(m.points[v], seg.first, seg.second));
+      }
+      toRef.push_back(d);
+    }
+    std::nth_element(toRef.begin(), toRef.begin() + static_cast<std::ptrdiff_t>(toRef.size() / 2), toRef.end());
+    b.toReference = toRef[toRef.size() / 2];
+    std::copy(c.data(), c.data() + 3, b.centre);
+    b.cloudGap = std::numeric_limits<double>::infinity();
+    if (cloud && cloud->GetNumberOfPoints() > 0)
+    {
+      const vtkIdType nearest = locator->FindClosestPoint(c.data());
+      Vec3 p;
+      cloud->GetPoint(nearest, p.data());
+      b.cloudGap = (p - c).norm();
+    }
+    b.largestPiece = find(loop[0]) == largest;
+    b.kind = b.toReference <= referenceDistance ? BoundaryLoop::ReferenceHole
+      : b.cloudGap > gapDistance                ? BoundaryLoop::ScanGap
+                                                : BoundaryLoop::Other;
+    report.edges[b.kind] += b.edges;
+    ++report.loopCount[b.kind];
+    report.loops.push_back(b);
+  }
+  std::stable_sort(report.loops.begin(), report.loops.end(),
+    [](const BoundaryLoop& x, const BoundaryLoop& y) { return x.edges > y.edges; });
+  return report;
+}
+
+std::string DescribeBoundary(const BoundaryReport& report, double unit, const char* unitName)
+{
+  static const char* names[3] = { "at a reference hole", "scan gap", "other" };
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(2);
+  s << "boundary loops (reference has " << report.referenceLoops << "):";
+  for (int k = 0; k < 3; ++k)
+  {
+    s << " " << names[k] << " " << report.loopCount[k] << " loops / " << report.edges[k] << " edges;";
+  }
+  s << "\n";
+  for (const BoundaryLoop& b : report.loops)
+  {
+    s << "  " << names[b.kind] << ": " << b.edges << " edges at (" << b.centre[0] / unit << ", " << b.centre[1] / unit
+      << ", " << b.centre[2] / unit << ") " << unitName << ", cloud gap " << b.cloudGap / unit << ", to reference border "
+      << b.toReference / unit << (b.largestPiece ? "" : ", smaller piece") << "\n";
+  }
+  return s.str();
+}
 
 MeshQuality MeasureMesh(vtkPolyData* mesh, vtkPolyData* reference, vtkPoints* cloud, const MetricOptions& options)
 {

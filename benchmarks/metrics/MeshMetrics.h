@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 class vtkPoints;
 class vtkPolyData;
@@ -50,6 +51,45 @@ struct MetricOptions
   double completenessThreshold = 1e-3; ///< absolute distance (1 mm for the bunny in metres)
   double spuriousDistance = 0.0;   ///< absolute (2 h); 0 skips the spurious share
 };
+
+/// One boundary loop of a mesh: a closed walk along edges of one triangle (split where the border
+/// passes twice through a vertex), and where it is.
+struct BoundaryLoop
+{
+  enum Kind
+  {
+    ReferenceHole, ///< around one of the reference's own holes (the scan has no data there)
+    ScanGap,       ///< the cloud has no point near its centre: a hole of the scan the reference closed
+    Other          ///< neither: a hole or a border where the cloud has data
+  };
+  std::size_t edges = 0;
+  double centre[3] = { 0.0, 0.0, 0.0 }; ///< mean of its vertices
+  double cloudGap = 0.0;       ///< distance from the centre to the nearest cloud point
+  double toReference = 0.0;    ///< median distance from its vertices to the reference's border
+  bool largestPiece = false;   ///< on the largest piece (else the border of a smaller piece)
+  Kind kind = Other;
+};
+
+struct BoundaryReport
+{
+  std::vector<BoundaryLoop> loops;           ///< largest first
+  std::size_t referenceLoops = 0;            ///< the reference's own boundary loops
+  std::size_t edges[3] = { 0, 0, 0 };        ///< boundary edges by Kind
+  std::size_t loopCount[3] = { 0, 0, 0 };    ///< loops by Kind
+};
+
+/**
+ * Sorts every boundary loop of @p mesh: ReferenceHole when at least half its vertices lie within
+ * @p referenceDistance of the reference's boundary edges (the scan's holes that the reference
+ * surface, made from the same scans, also leaves open); else ScanGap when no @p cloud point lies
+ * within @p gapDistance of the loop's centre (the scan has no data in the hole: the domain test's
+ * MaxDistance is the natural choice); else Other.
+ */
+BoundaryReport ClassifyBoundary(
+  vtkPolyData* mesh, vtkPolyData* reference, vtkPoints* cloud, double referenceDistance, double gapDistance);
+
+/// A table of @p report's loops (Other and ScanGap ones in full, ReferenceHole ones summed), in @p unit.
+std::string DescribeBoundary(const BoundaryReport& report, double unit, const char* unitName);
 
 /// Measures triangle mesh @p mesh against @p reference (a triangle mesh) and @p cloud.
 MeshQuality MeasureMesh(vtkPolyData* mesh, vtkPolyData* reference, vtkPoints* cloud, const MetricOptions& options);

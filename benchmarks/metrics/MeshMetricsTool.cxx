@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U]
+ * pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U] [--loops H]
  *
  * Prints the comparison of the mesh issue for any triangle mesh (ours, MeshLab's, Poisson's):
  * accuracy (mesh to REFERENCE), completeness (REFERENCE's vertices to the mesh, and the share
  * beyond --threshold), the share of the mesh's area farther than --spurious from every CLOUD point,
  * and its topology. Distances in the files' units; --unit scales the printout (default 1e-6: um
- * for files in metres). Meshes: .vtp .ply .stl .obj.
+ * for files in metres). --loops H also sorts every boundary loop of the mesh: at one of REFERENCE's
+ * own holes (half its vertices within 3 H of REFERENCE's border), at a gap of the scan (no CLOUD
+ * point within H of its centre; H = the mesher's MaxDistance, 1 h), or other (ClassifyBoundary),
+ * and lists them in mm (for files in metres). Meshes: .vtp .ply .stl .obj.
  */
 #include "MeshMetrics.h"
 
@@ -81,6 +84,7 @@ int main(int argc, char** argv)
   std::vector<std::string> positional;
   pss_metrics::MetricOptions options;
   double unit = 1e-6;
+  double loops = 0.0; // > 0: classify the boundary loops, with this gap distance (MaxDistance, 1 h)
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -98,9 +102,11 @@ int main(int argc, char** argv)
       options.completenessThreshold = value();
     else if (a == "--unit")
       unit = value();
+    else if (a == "--loops")
+      loops = value();
     else if (a == "--help" || a == "-h")
     {
-      std::cout << "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U]\n";
+      std::cout << "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U] [--loops H]\n";
       return 0;
     }
     else
@@ -108,7 +114,7 @@ int main(int argc, char** argv)
   }
   if (positional.size() < 2 || positional.size() > 3)
   {
-    std::cerr << "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U]\n";
+    std::cerr << "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U] [--loops H]\n";
     return 2;
   }
   vtkSMPTools::SetBackend("STDThread");
@@ -118,5 +124,12 @@ int main(int argc, char** argv)
   const pss_metrics::MeshQuality q =
     pss_metrics::MeasureMesh(mesh, reference, cloud ? cloud->GetPoints() : nullptr, options);
   std::cout << pss_metrics::Describe(q, unit, unit == 1e-6 ? "um" : "units");
+  if (loops > 0.0)
+  {
+    const pss_metrics::BoundaryReport b = pss_metrics::ClassifyBoundary(
+      mesh, reference, cloud ? cloud->GetPoints() : nullptr, 3.0 * loops, loops);
+    // Loops are millimetres across: listed in mm for files in metres, else in the files' units.
+    std::cout << pss_metrics::DescribeBoundary(b, unit == 1e-6 ? 1e-3 : unit, unit == 1e-6 ? "mm" : "units");
+  }
   return 0;
 }

@@ -39,6 +39,10 @@ void MeshOptions::validate() const
   {
     throw std::invalid_argument("the mesh's smallest piece area must be a finite number of h^2, at least 0");
   }
+  if (!(coveredPieceArea >= 0.0 && std::isfinite(coveredPieceArea)))
+  {
+    throw std::invalid_argument("the mesh's covered piece area must be a finite number of h^2, at least 0");
+  }
   if (maxBandCells == 0)
   {
     throw std::invalid_argument("the mesh's largest band must be at least one cell");

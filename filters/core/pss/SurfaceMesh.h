@@ -29,13 +29,16 @@
  *    moved to their projections (projectVertices), is within maxFoldAngle of its vertices' n (a
  *    cell whose crossings projected onto two different sheets, or folded over, is not). The
  *    unused vertices are dropped and the mesh's topology is counted. In 3D, connected pieces
- *    smaller than minPieceArea h^2 are removed when asked (islands of a few cells).
- * 7. close: a hole of the result bounded by at most maxHoleEdges edges, with no vertex shared by
- *    two borders, is closed by a fan about the projection of its vertices' centroid, when that
- *    projection is InDomain, travelled at most maxVertexTravel cells, and no triangle of the fan
- *    folds (maxFoldAngle); a hole of three edges by one triangle. Such holes are where a seam of
- *    the orientation, a fold or one dropped crossing left a few cells out, not where the domain
- *    ends: the surface is defined at their centre, so the mesh covers it.
+ *    smaller than minPieceArea h^2 are removed when asked (islands of a few cells), and small
+ *    pieces lying over the largest piece's interior (coveredPieceArea) are.
+ * 7. close: a hole of the result bounded by at most maxHoleEdges edges (a pinched border is cut
+ *    into its simple loops) is closed by a fan about the projection of its vertices' centroid,
+ *    when that projection is InDomain, travelled at most maxVertexTravel cells, and no triangle of
+ *    the fan folds (maxFoldAngle); a hole of three edges by one triangle. Where the fan fails but
+ *    the cloud has a point within maxDistance of the centre, by the least-area triangulation of the
+ *    hole's own vertices whose triangles do not fold. Such holes are where a seam of the
+ *    orientation, a fold or one dropped crossing left a few cells out, not where the domain ends:
+ *    the scan has data there, so the mesh covers it.
  * Every stage is deterministic: the result does not depend on the number of threads.
  */
 #pragma once
@@ -48,6 +51,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pss
@@ -67,6 +71,11 @@ struct MeshOptions
   /// 3D: connected pieces of a smaller area, in units of h^2, are removed. 0 (the default) keeps
   /// every piece: on the bunny the islands are bits of real surface inside holes of the main piece.
   double minPieceArea = 0.0;
+  /// 3D: pieces smaller than this, in units of h^2, other than the largest, are removed when every
+  /// vertex of theirs lies within 3 h of the largest piece's interior (its nearest vertex of the
+  /// largest piece is not on a border): a second layer over surface the largest piece already
+  /// covers (on the bunny, islands that stray scan points define). 0 keeps them.
+  double coveredPieceArea = 10.0;
   std::size_t maxBandCells = std::size_t(1) << 24; ///< refuse larger bands (about 60 bytes a cell)
   /// How crossings are projected (Definition 1 by default). The tolerance is 1e-5 h, not the
   /// projection's 1e-6 h: vertices need no better, and the integral energy's steps can hover
@@ -93,6 +102,7 @@ struct MeshStatistics
   std::size_t droppedSimplices = 0;   ///< triangles (segments) dropped, with those vertices or folded
   std::size_t foldedSimplices = 0;    ///< of which: cells turned more than maxFoldAngle off their vertices' n
   std::size_t removedPieces = 0;      ///< pieces smaller than MeshOptions::minPieceArea (3D)
+  std::size_t coveredPieces = 0;      ///< small pieces over the largest one (MeshOptions::coveredPieceArea)
   std::size_t closedHoles = 0;        ///< small holes closed (3D: see MeshOptions::maxHoleEdges)
   std::size_t components = 0;         ///< connected pieces of the result
   std::size_t boundaryEdges = 0;      ///< edges of one triangle (3D); polyline ends (2D)
@@ -160,8 +170,14 @@ private:
   std::uint32_t crossingOn(std::uint32_t lower, std::uint32_t upper, int direction);
   /// True when a cell of normal @p face (unnormalized) is within maxFoldAngle of @p vertexNormals' sum.
   bool isUnfolded(const Vec3& face, const Vec3& vertexNormals) const;
+  /// True when a triangle a, b, c that closes a hole is unfolded, or is a sliver facing @p vertexNormals' side.
+  bool closesFlat(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& vertexNormals) const;
   /// The simple border loops of @p mesh of at most maxHoleEdges edges, each in its triangles' winding.
   std::vector<std::vector<std::uint32_t>> smallHoles(const SurfaceMesh& mesh) const;
+  /// The unfolded triangulation of least area of @p hole's own vertices whose new edges are not in
+  /// @p edges (sorted (lower, higher) vertex pairs), or none.
+  std::vector<std::array<std::uint32_t, 3>> triangulateHole(const std::vector<std::uint32_t>& hole,
+    const SurfaceMesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) const;
   void closeSmallHoles(SurfaceMesh& mesh, Workspace& ws);
 
   const SurfaceDefinition& Surface;

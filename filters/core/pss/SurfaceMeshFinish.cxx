@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <numeric>
 #include <vector>
 
@@ -194,6 +195,113 @@ void forEachEdge(const EdgeList& e, Visit&& visit)
   }
 }
 
+// Per vertex: whether it is in a piece of @p triangles, other than the largest, smaller than
+// @p maxArea, whose every vertex has for nearest vertex of the largest piece within @p reach an
+// interior one (not on its border): a second layer over surface that the largest piece already
+// covers. A piece beside a hole of the largest piece has border vertices of it nearest, and stays.
+// Counts the covered pieces in @p coveredPieces.
+std::vector<char> coveredPieces(const std::vector<std::array<std::uint32_t, 3>>& triangles, const std::vector<Vec3>& points,
+  double maxArea, double reach, std::size_t& coveredPieces)
+{
+  coveredPieces = 0;
+  std::vector<char> covered(points.size(), 0);
+  if (maxArea <= 0.0 || triangles.empty())
+  {
+    return covered;
+  }
+  Pieces pieces = piecesOf(triangles, points);
+  const auto largest = static_cast<std::size_t>(std::max_element(pieces.measure.begin(), pieces.measure.end()) - pieces.measure.begin());
+  std::vector<char> used(points.size(), 0);
+  for (const auto& t : triangles)
+  {
+    used[t[0]] = used[t[1]] = used[t[2]] = 1;
+  }
+  std::vector<char> border(points.size(), 0);
+  forEachEdge(edgesOf(triangles, points.size()), [&](std::uint32_t a, std::uint32_t b, std::uint32_t sides, bool) {
+    if (sides == 1)
+    {
+      border[a] = border[b] = 1;
+    }
+  });
+  // The largest piece's vertices hashed by their cell of side reach: the nearest within reach is
+  // in the 27 cells about a vertex's own.
+  auto cellOf = [&](const Vec3& p) {
+    std::array<long long, 3> c{};
+    for (int a = 0; a < 3; ++a)
+    {
+      c[a] = static_cast<long long>(std::floor(p[a] / reach));
+    }
+    return c;
+  };
+  auto keyOf = [](const std::array<long long, 3>& c) {
+    std::uint64_t k = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      k = (k << 21) | (static_cast<std::uint64_t>(c[a]) & ((std::uint64_t(1) << 21) - 1));
+    }
+    return k;
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> hashed;
+  std::vector<std::uint32_t> candidates; // vertices of small pieces other than the largest
+  for (std::size_t v = 0; v < points.size(); ++v)
+  {
+    if (!used[v])
+    {
+      continue;
+    }
+    const std::size_t root = pieces.sets.find(v);
+    if (root == largest)
+    {
+      hashed.emplace_back(keyOf(cellOf(points[v])), static_cast<std::uint32_t>(v));
+    }
+    else if (pieces.measure[root] < maxArea)
+    {
+      candidates.push_back(static_cast<std::uint32_t>(v));
+    }
+  }
+  std::sort(hashed.begin(), hashed.end());
+  std::vector<char> uncovered(points.size(), 0); // per piece root: a vertex of it is not over the largest piece
+  for (const std::uint32_t v : candidates)
+  {
+    const std::array<long long, 3> c = cellOf(points[v]);
+    double best = reach * reach;
+    std::uint32_t nearest = static_cast<std::uint32_t>(-1);
+    for (long long dx = -1; dx <= 1; ++dx)
+    {
+      for (long long dy = -1; dy <= 1; ++dy)
+      {
+        for (long long dz = -1; dz <= 1; ++dz)
+        {
+          const std::uint64_t k = keyOf({ { c[0] + dx, c[1] + dy, c[2] + dz } });
+          for (auto it = std::lower_bound(hashed.begin(), hashed.end(), std::make_pair(k, std::uint32_t(0)));
+               it != hashed.end() && it->first == k; ++it)
+          {
+            const double d2 = (points[it->second] - points[v]).squaredNorm();
+            if (d2 < best || (d2 == best && it->second < nearest))
+            {
+              best = d2;
+              nearest = it->second;
+            }
+          }
+        }
+      }
+    }
+    if (nearest == static_cast<std::uint32_t>(-1) || border[nearest])
+    {
+      uncovered[pieces.sets.find(v)] = 1;
+    }
+  }
+  std::vector<char> counted(points.size(), 0);
+  for (const std::uint32_t v : candidates)
+  {
+    const std::size_t root = pieces.sets.find(v);
+    covered[v] = uncovered[root] ? 0 : 1;
+    coveredPieces += covered[v] && !counted[root] ? 1 : 0;
+    counted[root] = 1;
+  }
+  return covered;
+}
+
 } // namespace
 
 void countTopology(SurfaceMesh& mesh)
@@ -299,7 +407,10 @@ SurfaceMesh SurfaceMesher::finish(Workspace& ws)
     const double h = Surface.h();
     const std::vector<char> large =
       largePieces(kept, point, Options.minPieceArea * h * h, Statistics.removedPieces);
-    mesh.triangles = keepCells(kept, n, [&](const std::array<std::uint32_t, 3>& t) { return large[t[0]] != 0; }, newIndex);
+    const std::vector<char> covered =
+      coveredPieces(kept, point, Options.coveredPieceArea * h * h, 3.0 * h, Statistics.coveredPieces);
+    mesh.triangles = keepCells(
+      kept, n, [&](const std::array<std::uint32_t, 3>& t) { return large[t[0]] != 0 && covered[t[0]] == 0; }, newIndex);
     Statistics.droppedSimplices = Triangles.size() - mesh.triangles.size();
   }
   else
@@ -347,43 +458,174 @@ bool SurfaceMesher::isUnfolded(const Vec3& face, const Vec3& vertexNormals) cons
     face.dot(vertexNormals) >= foldCos * face.norm() * vertexNormals.norm();
 }
 
+bool SurfaceMesher::closesFlat(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& vertexNormals) const
+{
+  // A sliver (thinner than a tenth of a cell across its longest side) only has to face its
+  // vertices' side: the direction of so thin a triangle says more about the last digits of its
+  // vertices' projections than about a fold, and closing it moves nothing off the surface. The
+  // outline of a lone triangle or flap, walked as a hole, faces the other side and stays open.
+  const Vec3 face = (b - a).cross(c - a);
+  if (isUnfolded(face, vertexNormals))
+  {
+    return true;
+  }
+  const double longest = std::max({ (b - a).norm(), (c - b).norm(), (a - c).norm() });
+  return face.dot(vertexNormals) > 0.0 && face.norm() <= 0.1 * Cell * longest;
+}
+
 std::vector<std::vector<std::uint32_t>> SurfaceMesher::smallHoles(const SurfaceMesh& mesh) const
 {
   // A border edge is the side of one triangle; the hole beside it is walked from each border
-  // vertex to the next, in the triangles' winding (a -> b where the triangle runs a -> b).
+  // vertex to the next, in the triangles' winding (a -> b where the triangle runs a -> b). A
+  // vertex where two borders meet (a pinch: two border edges leave it) is passed twice; the walk
+  // cuts a loop off each time it comes back to a vertex it has already passed, so every loop is
+  // simple and a pinched hole is closed as the two holes it is.
   const std::size_t nv = mesh.points.size();
-  std::vector<std::uint32_t> next(nv, NoIndex);
-  std::vector<char> pinched(nv, 0); // two border edges leave it: holes through it are left alone
-  std::vector<std::uint32_t> starts;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> border; // (from, to), sorted
   forEachEdge(edgesOf(mesh.triangles, nv), [&](std::uint32_t lower, std::uint32_t higher, std::uint32_t sides, bool forward) {
     if (sides == 1)
     {
-      const std::uint32_t from = forward ? lower : higher;
-      pinched[from] |= next[from] != NoIndex ? 1 : 0;
-      next[from] = forward ? higher : lower;
-      starts.push_back(from);
+      border.emplace_back(forward ? lower : higher, forward ? higher : lower);
     }
   });
-  std::vector<std::vector<std::uint32_t>> holes;
-  std::vector<char> visited(nv, 0);
-  for (const std::uint32_t start : starts)
+  std::sort(border.begin(), border.end());
+  std::vector<std::uint32_t> first(nv + 1, 0); // border edges out of v: first[v] .. first[v + 1] - 1
+  for (const auto& e : border)
   {
-    std::vector<std::uint32_t> loop;
-    bool simple = true;
-    std::uint32_t v = start;
-    while (v != NoIndex && !visited[v])
+    ++first[e.first + 1];
+  }
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<char> used(border.size(), 0);
+  auto unusedOutOf = [&](std::uint32_t v) {
+    for (std::uint32_t i = first[v]; i < first[v + 1]; ++i)
     {
-      visited[v] = 1;
-      simple = simple && !pinched[v];
-      loop.push_back(v);
-      v = next[v];
+      if (!used[i])
+      {
+        return i;
+      }
     }
-    if (simple && v == start && loop.size() >= 3 && loop.size() <= Options.maxHoleEdges)
+    return NoIndex;
+  };
+  std::vector<std::uint32_t> position(nv, NoIndex); // where a vertex is on the current walk
+  std::vector<std::vector<std::uint32_t>> holes;
+  for (std::uint32_t s = 0; s < border.size(); ++s)
+  {
+    std::vector<std::uint32_t> walk;
+    std::uint32_t e = used[s] ? NoIndex : s;
+    while (e != NoIndex)
     {
-      holes.push_back(std::move(loop));
+      used[e] = 1;
+      const std::uint32_t from = border[e].first;
+      position[from] = static_cast<std::uint32_t>(walk.size());
+      walk.push_back(from);
+      const std::uint32_t to = border[e].second;
+      if (position[to] != NoIndex)
+      {
+        // Back at a vertex of the walk: the part from it on is a simple loop.
+        const std::uint32_t p = position[to];
+        std::vector<std::uint32_t> loop(walk.begin() + p, walk.end());
+        for (const std::uint32_t v : loop)
+        {
+          position[v] = NoIndex;
+        }
+        walk.resize(p);
+        if (loop.size() >= 3 && loop.size() <= Options.maxHoleEdges)
+        {
+          holes.push_back(std::move(loop));
+        }
+        if (p == 0)
+        {
+          break;
+        }
+      }
+      e = unusedOutOf(to);
+    }
+    for (const std::uint32_t v : walk) // an open walk (a border that does not close): left alone
+    {
+      position[v] = NoIndex;
     }
   }
   return holes;
+}
+
+std::vector<std::array<std::uint32_t, 3>> SurfaceMesher::triangulateHole(const std::vector<std::uint32_t>& hole,
+  const SurfaceMesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) const
+{
+  // The triangulation of the hole's own vertices of least area whose every triangle is unfolded
+  // (dynamic programming over the polygon's sub-chains, as in Liepa's hole filling), and whose
+  // diagonals are not already edges of the mesh (that would make them non-manifold).
+  const std::size_t k = hole.size();
+  const double infinite = std::numeric_limits<double>::infinity();
+  std::vector<double> cost(k * k, infinite);
+  std::vector<std::size_t> split(k * k, 0);
+  auto isEdge = [&](std::uint32_t a, std::uint32_t b) {
+    return std::binary_search(edges.begin(), edges.end(), std::make_pair(std::min(a, b), std::max(a, b)));
+  };
+  std::vector<char> usable(k * k, 1); // may chain i..j be closed by the side (i, j)?
+  for (std::size_t i = 0; i < k; ++i)
+  {
+    for (std::size_t j = i + 2; j < k; ++j)
+    {
+      usable[i * k + j] = (i == 0 && j == k - 1) || !isEdge(hole[i], hole[j]) ? 1 : 0;
+    }
+  }
+  for (std::size_t i = 0; i + 1 < k; ++i)
+  {
+    cost[i * k + i + 1] = 0.0;
+  }
+  for (std::size_t span = 2; span < k; ++span)
+  {
+    for (std::size_t i = 0; i + span < k; ++i)
+    {
+      const std::size_t j = i + span;
+      if (!usable[i * k + j])
+      {
+        continue;
+      }
+      for (std::size_t m = i + 1; m < j; ++m)
+      {
+        const double sub = cost[i * k + m] + cost[m * k + j];
+        if (!(sub < cost[i * k + j]))
+        {
+          continue;
+        }
+        // The border runs hole[i] -> hole[i + 1]: the triangles that close it run the other way.
+        const Vec3& a = mesh.points[hole[j]];
+        const Vec3& b = mesh.points[hole[m]];
+        const Vec3& c = mesh.points[hole[i]];
+        if (!closesFlat(a, b, c, mesh.normals[hole[i]] + mesh.normals[hole[m]] + mesh.normals[hole[j]]))
+        {
+          continue;
+        }
+        const double total = sub + 0.5 * (b - a).cross(c - a).norm();
+        if (total < cost[i * k + j])
+        {
+          cost[i * k + j] = total;
+          split[i * k + j] = m;
+        }
+      }
+    }
+  }
+  std::vector<std::array<std::uint32_t, 3>> fill;
+  if (cost[k - 1] == infinite)
+  {
+    return fill;
+  }
+  std::vector<std::pair<std::size_t, std::size_t>> todo{ { 0, k - 1 } };
+  while (!todo.empty())
+  {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    if (j - i < 2)
+    {
+      continue;
+    }
+    const std::size_t m = split[i * k + j];
+    fill.push_back({ { hole[j], hole[m], hole[i] } });
+    todo.emplace_back(i, m);
+    todo.emplace_back(m, j);
+  }
+  return fill;
 }
 
 void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
@@ -392,7 +634,34 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
   {
     return;
   }
-  for (const std::vector<std::uint32_t>& hole : smallHoles(mesh))
+  const std::vector<std::vector<std::uint32_t>> holes = smallHoles(mesh);
+  // The mesh's edges between two vertices of these holes, sorted (a diagonal of a hole's
+  // triangulation must not be one of them), grown as holes are closed.
+  std::vector<char> onHole(mesh.points.size(), 0);
+  for (const auto& hole : holes)
+  {
+    for (const std::uint32_t v : hole)
+    {
+      onHole[v] = 1;
+    }
+  }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (const auto& t : mesh.triangles)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      const std::uint32_t a = t[i];
+      const std::uint32_t b = t[(i + 1) % 3];
+      if (onHole[a] && onHole[b])
+      {
+        edges.emplace_back(std::min(a, b), std::max(a, b));
+      }
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const double h = Surface.h();
+  for (const std::vector<std::uint32_t>& hole : holes)
   {
     const std::size_t k = hole.size();
     Vec3 centre = Vec3::Zero();
@@ -410,6 +679,7 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
     Vec3 apex = centre;
     Vec3 apexNormal = normalSum;
     const auto apexIndex = static_cast<std::uint32_t>(mesh.points.size());
+    bool fan = k > 3;
     if (k == 3)
     {
       fill.push_back({ { hole[0], hole[2], hole[1] } });
@@ -418,29 +688,52 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
     {
       ev = classifyStart(Surface, centre, Options.projection, Options.domain, ws, &Normals);
       const Direction& d = ev.projection.direction;
-      if (ev.label != DomainLabel::InDomain || (ev.projection.point - centre).norm() > Options.maxVertexTravel * Cell ||
-        !d.defined)
+      fan = ev.label == DomainLabel::InDomain &&
+        (ev.projection.point - centre).norm() <= Options.maxVertexTravel * Cell && d.defined;
+      if (fan)
       {
-        continue;
-      }
-      apex = Options.projectVertices ? ev.projection.point : centre;
-      apexNormal = d.n.dot(normalSum) < 0.0 ? Vec3(-d.n) : d.n;
-      for (std::size_t i = 0; i < k; ++i)
-      {
-        fill.push_back({ { hole[(i + 1) % k], hole[i], apexIndex } });
+        apex = Options.projectVertices ? ev.projection.point : centre;
+        apexNormal = d.n.dot(normalSum) < 0.0 ? Vec3(-d.n) : d.n;
+        for (std::size_t i = 0; i < k; ++i)
+        {
+          fill.push_back({ { hole[(i + 1) % k], hole[i], apexIndex } });
+        }
       }
     }
     auto at = [&](std::uint32_t v) -> const Vec3& { return v == apexIndex ? apex : mesh.points[v]; };
     auto normalAt = [&](std::uint32_t v) -> const Vec3& { return v == apexIndex ? apexNormal : mesh.normals[v]; };
-    const bool flat = std::all_of(fill.begin(), fill.end(), [&](const std::array<std::uint32_t, 3>& t) {
-      const Vec3 face = (at(t[1]) - at(t[0])).cross(at(t[2]) - at(t[0]));
-      return isUnfolded(face, normalAt(t[0]) + normalAt(t[1]) + normalAt(t[2]));
+    const bool flat = !fill.empty() && std::all_of(fill.begin(), fill.end(), [&](const std::array<std::uint32_t, 3>& t) {
+      return closesFlat(at(t[0]), at(t[1]), at(t[2]), normalAt(t[0]) + normalAt(t[1]) + normalAt(t[2]));
     });
-    if (!flat)
+    if (!flat && k > 3)
+    {
+      // No fan: its apex is outside the domain or a triangle of it folds (a flap over a seam of
+      // the orientation). The hole is still closed from its own vertices when the scan has data
+      // at its centre (a cloud point within MaxDistance): only a hole over a gap of the scan, where
+      // the surface is not defined, must stay open.
+      const bool scanHasData = Surface.index().nearest(centre).second <=
+        Options.domain.maxDistance * h * Options.domain.maxDistance * h;
+      fan = false;
+      fill = scanHasData ? triangulateHole(hole, mesh, edges) : std::vector<std::array<std::uint32_t, 3>>{};
+      if (fill.empty())
+      {
+        continue;
+      }
+      for (const auto& t : fill)
+      {
+        for (int i = 0; i < 3; ++i)
+        {
+          edges.emplace_back(std::min(t[i], t[(i + 1) % 3]), std::max(t[i], t[(i + 1) % 3]));
+        }
+      }
+      std::sort(edges.begin(), edges.end());
+      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    }
+    else if (!flat)
     {
       continue;
     }
-    if (k > 3)
+    if (fan)
     {
       mesh.points.push_back(apex);
       mesh.normals.push_back(apexNormal);
