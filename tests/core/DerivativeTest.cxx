@@ -138,8 +138,9 @@ void checkDistanceGradient(int dim)
   const double eps = 1e-4 * c.h;
   for (const Vec3& x : queries(c, 40, 88u))
   {
-    Vec3 grad;
-    const double delta = field.deltaAndGradient(x, ws, grad);
+    const DeltaJet jet = field.jet(x, Vec3::UnitX(), ws);
+    const Vec3 grad = jet.gradient;
+    const double delta = jet.value;
     for (int k = 0; k < dim; ++k)
     {
       const Vec3 e = Vec3::Unit(k);
@@ -153,8 +154,7 @@ void checkDistanceGradient(int dim)
   }
 }
 
-// The second derivatives: delta's curvature along a direction (and its jet's value and
-// gradient), and every definition's LineSample.curvature where it gives one, against central
+// The second derivatives: delta's curvature along a direction (and its jet's value), and every definition's LineSample.curvature where it gives one, against central
 // differences of the analytic first derivatives.
 void checkSecondDerivatives(int dim)
 {
@@ -168,14 +168,10 @@ void checkSecondDerivatives(int dim)
   {
     const Vec3 a = randomUnit(rng, dim);
     const DeltaJet jet = field.jet(x, a, ws);
-    Vec3 grad;
-    const double delta = field.deltaAndGradient(x, ws, grad);
+    const double delta = field.delta(x, ws);
     expectClose(jet.value, delta, 0.0, "jet value");
-    EXPECT_LE((jet.gradient - grad).norm(), 1e-12 * std::max(grad.norm(), delta / c.h)) << "jet gradient";
-    Vec3 gp;
-    Vec3 gm;
-    field.deltaAndGradient(x + eps * a, ws, gp);
-    field.deltaAndGradient(x - eps * a, ws, gm);
+    const Vec3 gp = field.jet(x + eps * a, a, ws).gradient;
+    const Vec3 gm = field.jet(x - eps * a, a, ws).gradient;
     expectClose(jet.curvature, a.dot(gp - gm) / (2 * eps), std::max(2.0, delta / (c.h * c.h)), "a^T H a of delta");
   }
   for (Variant v : allVariants())
@@ -202,8 +198,9 @@ void checkSecondDerivatives(int dim)
 
 } // namespace
 
-// Truth: delta's curvature along a = derivative of a . grad delta along a; the jet's value and
-// gradient are deltaAndGradient's; LineSample.curvature = derivative of the slope. 1e-6 relative.
+// Truth: delta's curvature along a = derivative of a . grad delta along a (the gradient itself
+// is checked above); the jet's value is delta; LineSample.curvature = derivative of the slope.
+// 1e-6 relative.
 TEST(Derivatives, SecondDerivativesMatchCentralDifference2D)
 {
   checkSecondDerivatives(2);

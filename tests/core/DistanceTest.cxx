@@ -43,10 +43,10 @@ void checkUpperBound(int dim, unsigned seed)
     const double delta = field.delta(x, ws);
     ASSERT_TRUE(std::isfinite(delta)) << x.transpose();
     EXPECT_GE(delta, d2 * (1 - 1e-12) - 1e-300) << "at " << x.transpose();
-    Vec3 grad;
-    const double delta2 = field.deltaAndGradient(x, ws, grad);
-    EXPECT_DOUBLE_EQ(delta2, delta);
-    EXPECT_TRUE(isFinite(grad)) << x.transpose();
+    const DeltaJet jet = field.jet(x, Vec3::UnitX(), ws);
+    EXPECT_DOUBLE_EQ(jet.value, delta);
+    EXPECT_TRUE(isFinite(jet.gradient)) << x.transpose();
+    EXPECT_TRUE(std::isfinite(jet.curvature)) << x.transpose();
   }
 }
 

@@ -825,15 +825,6 @@ double approximateSqDistance(const Neighbourhood& nb)
   return (nb.w() * nb.d2()).sum() / nb.weightSum;
 }
 
-Vec3 approximateSqDistanceGradient(const Neighbourhood& nb, double delta)
-{
-  const auto w = nb.w();
-  const auto spread = w * (nb.d2() - delta);
-  const Vec3 centroid((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum());
-  const Vec3 moment((spread * nb.x()).sum(), (spread * nb.y()).sum(), (spread * nb.z()).sum());
-  return (-2.0 * centroid + 2.0 * nb.invH2 * moment) / nb.weightSum;
-}
-
 DeltaJet approximateSqDistanceJet(const Neighbourhood& nb, const Vec3& a)
 {
   const auto w = nb.w();
@@ -869,19 +860,6 @@ double DistanceField::delta(const Vec3& y, Workspace& ws) const
   Neighbourhood& nb = ws.field;
   gatherNeighbourhood(Index, Params, y, nb, ws);
   return approximateSqDistance(nb);
-}
-
-double DistanceField::deltaAndGradient(const Vec3& y, Workspace& ws, Vec3& gradient, double* nearestSqDist) const
-{
-  Neighbourhood& nb = ws.field;
-  gatherNeighbourhood(Index, Params, y, nb, ws);
-  if (nearestSqDist)
-  {
-    *nearestSqDist = nb.minSqDist;
-  }
-  const double d = approximateSqDistance(nb);
-  gradient = approximateSqDistanceGradient(nb, d);
-  return d;
 }
 
 DeltaJet DistanceField::jet(const Vec3& y, const Vec3& a, Workspace& ws, double* nearestSqDist) const

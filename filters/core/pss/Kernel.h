@@ -172,12 +172,6 @@ Direction smallestEigenDirection(const Mat3& C, int dimension, double minStabili
 /// delta(y) = sum_i theta_N(y, p_i) |y - p_i|^2, the approximate squared distance (Sec. 5).
 double approximateSqDistance(const Neighbourhood& nb);
 
-/**
- * grad delta(y). Differentiating the normalized weights gives
- *   grad delta = -2 (c - y) + (2 / h^2) sum_i theta_N_i (p_i - y)(d_i^2 - delta).
- */
-Vec3 approximateSqDistanceGradient(const Neighbourhood& nb, double delta);
-
 /// delta, its gradient and its second derivative along a unit direction a, from one neighbourhood.
 struct DeltaJet
 {
@@ -188,8 +182,10 @@ struct DeltaJet
 
 /**
  * delta, grad delta and a^T H a, H the Hessian of delta. With theta_N the normalized weights,
- * r_i = p_i - y, m = sum theta_N r_i and T = sum theta_N (d_i^2 - delta) r_i, differentiating the
- * gradient above once more gives
+ * r_i = p_i - y, m = sum theta_N r_i (= c - y) and T = sum theta_N (d_i^2 - delta) r_i,
+ * differentiating the normalized weights gives
+ *   grad delta = -2 m + (2 / h^2) T,
+ * and differentiating once more
  *   H = 2 I - (8 / h^2) Cov + (4 / h^4) (sum theta_N (d_i^2 - delta) r_i r_i^T - T m^T - m T^T),
  * Cov the covariance about the centroid; along a it needs two more weighted sums of <a, r_i>^2.
  * (A single point gives H = 2 I, the Hessian of |y - p|^2.)
@@ -202,10 +198,8 @@ class DistanceField
 public:
   DistanceField(const PointIndex& index, const SurfaceParameters& params);
   double delta(const Vec3& y, Workspace& ws) const;
-  /// delta and grad delta at once (the gradient needs delta anyway); optionally the squared
-  /// distance from y to the nearest cloud point.
-  double deltaAndGradient(const Vec3& y, Workspace& ws, Vec3& gradient, double* nearestSqDist = nullptr) const;
-  /// delta, its gradient and its curvature along @p a (see approximateSqDistanceJet).
+  /// delta, its gradient and its curvature along @p a (see approximateSqDistanceJet); optionally
+  /// the squared distance from y to the nearest cloud point.
   DeltaJet jet(const Vec3& y, const Vec3& a, Workspace& ws, double* nearestSqDist = nullptr) const;
 
 private:
