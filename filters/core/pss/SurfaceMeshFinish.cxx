@@ -2,6 +2,7 @@
 // The mesher's last stage (SurfaceMesher::finish): keeping the triangles whose corners are in the
 // domain, removing small pieces, closing small holes, and the topology and measures of the result.
 // The band, the corners' values, the orientation and the contouring are in SurfaceMesh.cxx.
+#include "pss/PointIndex.h"
 #include "pss/SurfaceMesh.h"
 
 #include <Eigen/Geometry>
@@ -223,26 +224,10 @@ std::vector<char> coveredPieces(const std::vector<std::array<std::uint32_t, 3>>&
       border[a] = border[b] = 1;
     }
   });
-  // The largest piece's vertices hashed by their cell of side reach: the nearest within reach is
-  // in the 27 cells about a vertex's own.
-  auto cellOf = [&](const Vec3& p) {
-    std::array<long long, 3> c{};
-    for (int a = 0; a < 3; ++a)
-    {
-      c[a] = static_cast<long long>(std::floor(p[a] / reach));
-    }
-    return c;
-  };
-  auto keyOf = [](const std::array<long long, 3>& c) {
-    std::uint64_t k = 0;
-    for (int a = 0; a < 3; ++a)
-    {
-      k = (k << 21) | (static_cast<std::uint64_t>(c[a]) & ((std::uint64_t(1) << 21) - 1));
-    }
-    return k;
-  };
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> hashed;
-  std::vector<std::uint32_t> candidates; // vertices of small pieces other than the largest
+  // The largest piece's vertices in a k-d tree, to find each candidate's nearest.
+  std::vector<Vec3> largestPoints;
+  std::vector<std::uint32_t> largestVertex; // input position in largestPoints -> mesh vertex
+  std::vector<std::uint32_t> candidates;    // vertices of small pieces other than the largest
   for (std::size_t v = 0; v < points.size(); ++v)
   {
     if (!used[v])
@@ -252,41 +237,24 @@ std::vector<char> coveredPieces(const std::vector<std::array<std::uint32_t, 3>>&
     const std::size_t root = pieces.sets.find(v);
     if (root == largest)
     {
-      hashed.emplace_back(keyOf(cellOf(points[v])), static_cast<std::uint32_t>(v));
+      largestPoints.push_back(points[v]);
+      largestVertex.push_back(static_cast<std::uint32_t>(v));
     }
     else if (pieces.measure[root] < maxArea)
     {
       candidates.push_back(static_cast<std::uint32_t>(v));
     }
   }
-  std::sort(hashed.begin(), hashed.end());
+  if (candidates.empty())
+  {
+    return covered;
+  }
+  const PointIndex largestIndex(largestPoints, 3);
   std::vector<char> uncovered(points.size(), 0); // per piece root: a vertex of it is not over the largest piece
   for (const std::uint32_t v : candidates)
   {
-    const std::array<long long, 3> c = cellOf(points[v]);
-    double best = reach * reach;
-    std::uint32_t nearest = static_cast<std::uint32_t>(-1);
-    for (long long dx = -1; dx <= 1; ++dx)
-    {
-      for (long long dy = -1; dy <= 1; ++dy)
-      {
-        for (long long dz = -1; dz <= 1; ++dz)
-        {
-          const std::uint64_t k = keyOf({ { c[0] + dx, c[1] + dy, c[2] + dz } });
-          for (auto it = std::lower_bound(hashed.begin(), hashed.end(), std::make_pair(k, std::uint32_t(0)));
-               it != hashed.end() && it->first == k; ++it)
-          {
-            const double d2 = (points[it->second] - points[v]).squaredNorm();
-            if (d2 < best || (d2 == best && it->second < nearest))
-            {
-              best = d2;
-              nearest = it->second;
-            }
-          }
-        }
-      }
-    }
-    if (nearest == static_cast<std::uint32_t>(-1) || border[nearest])
+    const auto [i, sqDist] = largestIndex.nearest(points[v]);
+    if (!(sqDist < reach * reach) || border[largestVertex[largestIndex.originalId(i)]])
     {
       uncovered[pieces.sets.find(v)] = 1;
     }
