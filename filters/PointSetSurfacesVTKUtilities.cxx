@@ -8,10 +8,13 @@
 #include "vtkFieldData.h"
 #include "vtkIntArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPointSetSurface.h"
 
 #include <algorithm>
+#include <cstdint>
 
 namespace pss_vtk
 {
@@ -32,21 +35,34 @@ std::vector<pss::Vec3> ToVectors(vtkPoints* points)
   return out;
 }
 
-vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n)
+namespace
 {
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
+
+template <class ArrayT>
+vtkSmartPointer<vtkCellArray> VertexCellsOf(vtkIdType n)
+{
+  vtkNew<ArrayT> offsets;
+  vtkNew<ArrayT> connectivity;
   offsets->SetNumberOfValues(n + 1);
   connectivity->SetNumberOfValues(n);
   for (vtkIdType i = 0; i < n; ++i)
   {
-    offsets->SetValue(i, i);
-    connectivity->SetValue(i, i);
+    offsets->SetValue(i, static_cast<typename ArrayT::ValueType>(i));
+    connectivity->SetValue(i, static_cast<typename ArrayT::ValueType>(i));
   }
-  offsets->SetValue(n, n);
+  offsets->SetValue(n, static_cast<typename ArrayT::ValueType>(n));
   auto cells = vtkSmartPointer<vtkCellArray>::New();
   cells->SetData(offsets, connectivity);
   return cells;
+}
+
+} // namespace
+
+vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n)
+{
+  // 32-bit ids while they fit: half the memory of a large cloud's vertices, and readable by every
+  // VTK reader (the XML files record the type).
+  return n < vtkIdType(INT32_MAX) ? VertexCellsOf<vtkTypeInt32Array>(n) : VertexCellsOf<vtkTypeInt64Array>(n);
 }
 
 void AddSurfaceFieldData(vtkDataObject* output, vtkPointSetSurface* surface)

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <utility>
 #include <stdexcept>
 #include <vector>
 
@@ -77,7 +78,7 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
 
   try
   {
-    auto index = std::make_unique<pss::PointIndex>(points, dimension);
+    auto index = std::make_unique<pss::PointIndex>(std::move(points), dimension);
     this->SkippedPoints = static_cast<vtkIdType>(index->skippedCount());
     if (index->empty())
     {

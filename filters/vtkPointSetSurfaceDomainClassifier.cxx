@@ -18,20 +18,17 @@
 
 vtkStandardNewMacro(vtkPointSetSurfaceDomainClassifier);
 
-// The per-point evidence of the current update (the projection itself goes to the superclass).
+// The per-point evidence of the current update, filled in place by the projections (the
+// projection itself goes to the superclass).
 struct vtkPointSetSurfaceDomainClassifier::vtkInternals
 {
-  struct Evidence
-  {
-    pss::DomainLabel label = pss::DomainLabel::Undefined;
-    double distanceToCloud = 0.0;
-    double normalAngle = 0.0;
-    double startAngle = 0.0;
-    double startStability = 0.0;
-  };
   pss::DomainThresholds Thresholds;
   std::unique_ptr<pss::CloudNormals> Normals; ///< of the current update's cloud
-  std::vector<Evidence> Points;
+  vtkSmartPointer<vtkIntArray> Label;
+  vtkSmartPointer<vtkDoubleArray> Distance;
+  vtkSmartPointer<vtkDoubleArray> NormalAngle;
+  vtkSmartPointer<vtkDoubleArray> StartAngle;
+  vtkSmartPointer<vtkDoubleArray> StartStability;
 };
 
 vtkPointSetSurfaceDomainClassifier::vtkPointSetSurfaceDomainClassifier()
@@ -57,7 +54,12 @@ bool vtkPointSetSurfaceDomainClassifier::BeginProjection(const pss::SurfaceDefin
   }
   this->Internals->Thresholds = thresholds;
   this->Internals->Normals = std::make_unique<pss::CloudNormals>(surface);
-  this->Internals->Points.assign(static_cast<std::size_t>(numberOfStarts), vtkInternals::Evidence());
+  const vtkIdType n = numberOfStarts;
+  this->Internals->Label = pss_vtk::NewArray<vtkIntArray>("DomainLabel", n, 1);
+  this->Internals->Distance = pss_vtk::NewArray<vtkDoubleArray>("DistanceToCloud", n, 1);
+  this->Internals->NormalAngle = pss_vtk::NewArray<vtkDoubleArray>("NormalAngle", n, 1);
+  this->Internals->StartAngle = pss_vtk::NewArray<vtkDoubleArray>("StartAngle", n, 1);
+  this->Internals->StartStability = pss_vtk::NewArray<vtkDoubleArray>("StartStability", n, 1);
   return true;
 }
 
@@ -67,49 +69,31 @@ pss::ProjectionResult vtkPointSetSurfaceDomainClassifier::ProjectPoint(vtkIdType
   pss::DomainEvidence ev =
     pss::classifyStart(surface, pss::Vec3(start[0], start[1], start[2]), options, this->Internals->Thresholds, ws,
       this->Internals->Normals.get());
-  vtkInternals::Evidence& out = this->Internals->Points[static_cast<std::size_t>(i)];
-  out.label = ev.label;
-  out.distanceToCloud = ev.distanceToCloud;
-  out.normalAngle = ev.normalAngle;
-  out.startAngle = ev.startAngle;
-  out.startStability = ev.startStability;
+  // Only InDomain and Spurious points have a fixed point to measure (see the class description).
+  const bool fixedPoint = ev.label == pss::DomainLabel::InDomain || ev.label == pss::DomainLabel::Spurious;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  vtkInternals& out = *this->Internals;
+  out.Label->GetPointer(i)[0] = static_cast<int>(ev.label);
+  out.Distance->GetPointer(i)[0] = fixedPoint ? ev.distanceToCloud : nan;
+  out.NormalAngle->GetPointer(i)[0] = fixedPoint ? ev.normalAngle : nan;
+  out.StartAngle->GetPointer(i)[0] = fixedPoint ? ev.startAngle : nan;
+  out.StartStability->GetPointer(i)[0] = ev.startStability;
   return std::move(ev.projection);
 }
 
-bool vtkPointSetSurfaceDomainClassifier::AddPointArrays(
-  vtkPointSet*, const std::vector<pss::ProjectionResult>& results, vtkPointData* outPD)
+bool vtkPointSetSurfaceDomainClassifier::AddPointArrays(vtkPointSet*, vtkPointData* outPD)
 {
-  const std::vector<vtkInternals::Evidence>& evidence = this->Internals->Points;
-  if (evidence.size() != results.size())
+  vtkInternals& in = *this->Internals;
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(in.Label), static_cast<vtkDataArray*>(in.Distance),
+         static_cast<vtkDataArray*>(in.NormalAngle), static_cast<vtkDataArray*>(in.StartAngle),
+         static_cast<vtkDataArray*>(in.StartStability) })
   {
-    vtkErrorMacro(<< "internal error: " << evidence.size() << " labels for " << results.size() << " projections");
-    return false;
+    outPD->AddArray(a);
   }
-  const vtkIdType n = static_cast<vtkIdType>(evidence.size());
-  auto label = pss_vtk::NewArray<vtkIntArray>("DomainLabel", n, 1);
-  auto distance = pss_vtk::NewArray<vtkDoubleArray>("DistanceToCloud", n, 1);
-  auto normalAngle = pss_vtk::NewArray<vtkDoubleArray>("NormalAngle", n, 1);
-  auto startAngle = pss_vtk::NewArray<vtkDoubleArray>("StartAngle", n, 1);
-  auto startStability = pss_vtk::NewArray<vtkDoubleArray>("StartStability", n, 1);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    const vtkInternals::Evidence& ev = evidence[static_cast<std::size_t>(i)];
-    // Only InDomain and Spurious points have a fixed point to measure (see the class description).
-    const bool fixedPoint = ev.label == pss::DomainLabel::InDomain || ev.label == pss::DomainLabel::Spurious;
-    label->SetValue(i, static_cast<int>(ev.label));
-    distance->SetValue(i, fixedPoint ? ev.distanceToCloud : nan);
-    normalAngle->SetValue(i, fixedPoint ? ev.normalAngle : nan);
-    startAngle->SetValue(i, fixedPoint ? ev.startAngle : nan);
-    startStability->SetValue(i, ev.startStability);
-  }
-  outPD->AddArray(label);
-  outPD->AddArray(distance);
-  outPD->AddArray(normalAngle);
-  outPD->AddArray(startAngle);
-  outPD->AddArray(startStability);
   outPD->SetActiveScalars("DomainLabel");
-  this->Internals->Points.clear();
+  // The output holds them now; the next update allocates its own.
+  in.Label = nullptr;
+  in.Distance = in.NormalAngle = in.StartAngle = in.StartStability = nullptr;
   return true;
 }
 

@@ -84,8 +84,7 @@ protected:
   bool BeginProjection(const pss::SurfaceDefinition& surface, vtkIdType numberOfStarts) override;
   pss::ProjectionResult ProjectPoint(vtkIdType i, const double start[3], const pss::SurfaceDefinition& surface,
     const pss::ProjectionOptions& options, pss::Workspace& ws) override;
-  bool AddPointArrays(vtkPointSet* starts, const std::vector<pss::ProjectionResult>& results,
-    vtkPointData* outPD) override;
+  bool AddPointArrays(vtkPointSet* starts, vtkPointData* outPD) override;
 #endif
 
   double MaxDistance = 1.0;

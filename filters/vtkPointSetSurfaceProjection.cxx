@@ -19,6 +19,11 @@
 #include "vtkPolyData.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
+#include <cstdint>
+#include <exception>
+#include <vector>
+
 #include "pss/ExtremalSurface.h"
 #include "pss/PointIndex.h"
 #include "pss/SurfaceDefinition.h"
@@ -54,11 +59,105 @@ pss::ProjectionResult vtkPointSetSurfaceProjection::ProjectPoint(vtkIdType, cons
   return pss::project(surface, pss::Vec3(start[0], start[1], start[2]), options, ws);
 }
 
-bool vtkPointSetSurfaceProjection::AddPointArrays(
-  vtkPointSet*, const std::vector<pss::ProjectionResult>&, vtkPointData*)
+bool vtkPointSetSurfaceProjection::AddPointArrays(vtkPointSet*, vtkPointData*)
 {
   return true;
 }
+
+namespace
+{
+
+// The output's standard arrays, allocated before the projections and filled by them in place:
+// keeping every pss::ProjectionResult until the end would double the memory of a large run.
+struct StandardArrays
+{
+  explicit StandardArrays(vtkIdType n)
+    : N(n)
+  {
+    this->Points->SetDataTypeToDouble();
+    this->Points->SetNumberOfPoints(n);
+  }
+
+  // Point i's tuples: called from several threads, each i once.
+  void Set(vtkIdType i, const pss::ProjectionResult& r, const double start[3], const pss::PointIndex& index,
+    const pss::Orientation& orientation)
+  {
+    const bool valid = r.reason != pss::StopReason::InvalidInput;
+    const pss::Vec3 nrm = valid ? orientation.apply(r.direction.n, r.point) : pss::Vec3::Zero();
+    const pss::Vec3 d =
+      valid ? pss::Vec3(r.point - index.restrict(pss::Vec3(start[0], start[1], start[2]))) : pss::Vec3::Zero();
+    double* point = vtkDoubleArray::FastDownCast(this->Points->GetData())->GetPointer(3 * i);
+    std::copy(r.point.data(), r.point.data() + 3, point);
+    std::copy(nrm.data(), nrm.data() + 3, this->Normal->GetPointer(3 * i));
+    this->Energy->GetPointer(i)[0] = r.energy;
+    std::copy(d.data(), d.data() + 3, this->Displacement->GetPointer(3 * i));
+    this->Iterations->GetPointer(i)[0] = r.iterations;
+    this->Converged->GetPointer(i)[0] = r.converged ? 1 : 0;
+    this->Stability->GetPointer(i)[0] = r.direction.stability;
+    this->Extremum->GetPointer(i)[0] = static_cast<int>(r.type);
+    this->Reason->GetPointer(i)[0] = static_cast<int>(r.reason);
+  }
+
+  void AddTo(vtkPointData* pd) const
+  {
+    for (vtkDataArray* a : { static_cast<vtkDataArray*>(this->Normal), static_cast<vtkDataArray*>(this->Energy),
+           static_cast<vtkDataArray*>(this->Displacement), static_cast<vtkDataArray*>(this->Iterations),
+           static_cast<vtkDataArray*>(this->Converged), static_cast<vtkDataArray*>(this->Stability),
+           static_cast<vtkDataArray*>(this->Extremum), static_cast<vtkDataArray*>(this->Reason) })
+    {
+      pd->AddArray(a);
+    }
+    pd->SetNormals(this->Normal);
+  }
+
+  vtkIdType Size() const { return this->N; }
+
+  const vtkIdType N; // declared first: the arrays below are sized from it
+  vtkNew<vtkPoints> Points;
+  vtkSmartPointer<vtkDoubleArray> Normal = pss_vtk::NewArray<vtkDoubleArray>("Normal", N, 3);
+  vtkSmartPointer<vtkDoubleArray> Energy = pss_vtk::NewArray<vtkDoubleArray>("Energy", N, 1);
+  vtkSmartPointer<vtkDoubleArray> Displacement = pss_vtk::NewArray<vtkDoubleArray>("Displacement", N, 3);
+  vtkSmartPointer<vtkIntArray> Iterations = pss_vtk::NewArray<vtkIntArray>("Iterations", N, 1);
+  vtkSmartPointer<vtkUnsignedCharArray> Converged = pss_vtk::NewArray<vtkUnsignedCharArray>("Converged", N, 1);
+  vtkSmartPointer<vtkDoubleArray> Stability = pss_vtk::NewArray<vtkDoubleArray>("Stability", N, 1);
+  vtkSmartPointer<vtkIntArray> Extremum = pss_vtk::NewArray<vtkIntArray>("ExtremumType", N, 1);
+  vtkSmartPointer<vtkIntArray> Reason = pss_vtk::NewArray<vtkIntArray>("StopReason", N, 1);
+};
+
+// A segment from each valid start point to where its projection stopped (Figure 1).
+void FillProjectionLines(vtkPoints* startPoints, const StandardArrays& arrays, const pss::PointIndex& index,
+  vtkPolyData* lines)
+{
+  vtkNew<vtkPoints> ends;
+  ends->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> segments;
+  auto lineConverged = pss_vtk::NewArray<vtkUnsignedCharArray>("Converged", 0, 1);
+  auto lineReason = pss_vtk::NewArray<vtkIntArray>("StopReason", 0, 1);
+  auto lineStart = pss_vtk::NewArray<vtkIdTypeArray>("StartPointId", 0, 1);
+  for (vtkIdType i = 0; i < arrays.Size(); ++i)
+  {
+    const int reason = arrays.Reason->GetValue(i);
+    if (reason == static_cast<int>(pss::StopReason::InvalidInput))
+    {
+      continue;
+    }
+    double start[3];
+    startPoints->GetPoint(i, start);
+    const pss::Vec3 from = index.restrict(pss::Vec3(start[0], start[1], start[2]));
+    const vtkIdType ids[2] = { ends->InsertNextPoint(from.data()), ends->InsertNextPoint(arrays.Points->GetPoint(i)) };
+    segments->InsertNextCell(2, ids);
+    lineConverged->InsertNextValue(arrays.Converged->GetValue(i));
+    lineReason->InsertNextValue(reason);
+    lineStart->InsertNextValue(i);
+  }
+  lines->SetPoints(ends);
+  lines->SetLines(segments);
+  lines->GetCellData()->AddArray(lineConverged);
+  lines->GetCellData()->AddArray(lineReason);
+  lines->GetCellData()->AddArray(lineStart);
+}
+
+} // namespace
 
 int vtkPointSetSurfaceProjection::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -78,6 +177,7 @@ int vtkPointSetSurfaceProjection::RequestData(
   }
 
   const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
+  const pss::PointIndex& index = *this->Surface->GetIndex();
   pss::ProjectionOptions options;
   options.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.seekMaxima = this->SeekMaxima;
@@ -85,104 +185,64 @@ int vtkPointSetSurfaceProjection::RequestData(
   options.tolerance = this->Tolerance;
   options.maxTravel = this->MaxTravel;
 
-  const std::vector<pss::Vec3> startPoints = pss_vtk::ToVectors(starts->GetPoints());
-  const vtkIdType n = static_cast<vtkIdType>(startPoints.size());
+  vtkPoints* startPoints = starts->GetPoints();
+  const vtkIdType n = starts->GetNumberOfPoints();
+  // Neighbours are visited together so that they share cached neighbourhoods. The cloud's own
+  // points come in that order from the index at no cost; other start points are sorted.
+  std::vector<std::uint32_t> order;
+  try
+  {
+    order = starts == cloud && static_cast<vtkIdType>(index.size() + index.skippedCount()) == n
+      ? index.visitingOrder()
+      : pss::spatialOrder(pss_vtk::ToVectors(startPoints));
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "cannot order the start points: " << e.what());
+    return 0;
+  }
   if (!this->BeginProjection(surface, n))
   {
     return 0;
   }
-  std::vector<pss::ProjectionResult> results(startPoints.size());
-  const bool completed =
-    pss::forEachStart(startPoints, pss_vtk::SMPLoop(this), [&](std::size_t i, pss::Workspace& ws) {
-      results[i] = this->ProjectPoint(static_cast<vtkIdType>(i), startPoints[i].data(), surface, options, ws);
-    });
+  const pss::Orientation orientation = pss::Orientation::awayFromCentroid(index);
+  StandardArrays arrays(n);
+  const bool completed = pss::forEachInOrder(order, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
+    const vtkIdType i = static_cast<vtkIdType>(k);
+    double start[3];
+    startPoints->GetPoint(i, start);
+    arrays.Set(i, this->ProjectPoint(i, start, surface, options, ws), start, index, orientation);
+  });
   if (!completed)
   {
     return 1; // aborted: leave the outputs empty
   }
+  order = std::vector<std::uint32_t>();
 
-  const pss::PointIndex& index = *this->Surface->GetIndex();
-  const pss::Orientation orientation = pss::Orientation::awayFromCentroid(index);
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(n);
-  auto normal = pss_vtk::NewArray<vtkDoubleArray>("Normal", n, 3);
-  auto energy = pss_vtk::NewArray<vtkDoubleArray>("Energy", n, 1);
-  auto displacement = pss_vtk::NewArray<vtkDoubleArray>("Displacement", n, 3);
-  auto iterations = pss_vtk::NewArray<vtkIntArray>("Iterations", n, 1);
-  auto converged = pss_vtk::NewArray<vtkUnsignedCharArray>("Converged", n, 1);
-  auto stability = pss_vtk::NewArray<vtkDoubleArray>("Stability", n, 1);
-  auto extremum = pss_vtk::NewArray<vtkIntArray>("ExtremumType", n, 1);
-  auto reason = pss_vtk::NewArray<vtkIntArray>("StopReason", n, 1);
   vtkIdType invalid = 0;
   for (vtkIdType i = 0; i < n; ++i)
   {
-    const pss::ProjectionResult& r = results[i];
-    const bool valid = r.reason != pss::StopReason::InvalidInput;
-    invalid += valid ? 0 : 1;
-    points->SetPoint(i, r.point.data());
-    const pss::Vec3 nrm = valid ? orientation.apply(r.direction.n, r.point) : pss::Vec3::Zero();
-    normal->SetTypedTuple(i, nrm.data());
-    energy->SetValue(i, r.energy);
-    const pss::Vec3 d = valid ? pss::Vec3(r.point - index.restrict(startPoints[i])) : pss::Vec3::Zero();
-    displacement->SetTypedTuple(i, d.data());
-    iterations->SetValue(i, r.iterations);
-    converged->SetValue(i, r.converged ? 1 : 0);
-    stability->SetValue(i, r.direction.stability);
-    extremum->SetValue(i, static_cast<int>(r.type));
-    reason->SetValue(i, static_cast<int>(r.reason));
+    invalid += arrays.Reason->GetValue(i) == static_cast<int>(pss::StopReason::InvalidInput) ? 1 : 0;
   }
   if (invalid > 0)
   {
     vtkWarningMacro(<< invalid << " start point(s) have NaN or infinite coordinates: left in place, StopReason 4");
   }
 
-  output->SetPoints(points);
+  output->SetPoints(arrays.Points);
   output->SetVerts(pss_vtk::VertexCells(n));
   vtkPointData* outPD = output->GetPointData();
   outPD->PassData(starts->GetPointData());
-  for (vtkDataArray* a : { static_cast<vtkDataArray*>(normal), static_cast<vtkDataArray*>(energy),
-         static_cast<vtkDataArray*>(displacement), static_cast<vtkDataArray*>(iterations),
-         static_cast<vtkDataArray*>(converged), static_cast<vtkDataArray*>(stability),
-         static_cast<vtkDataArray*>(extremum), static_cast<vtkDataArray*>(reason) })
-  {
-    outPD->AddArray(a);
-  }
-  outPD->SetNormals(normal);
+  arrays.AddTo(outPD);
   pss_vtk::AddSurfaceFieldData(output, this->Surface);
-  if (!this->AddPointArrays(starts, results, outPD))
+  if (!this->AddPointArrays(starts, outPD))
   {
     output->Initialize();
     return 0;
   }
-
   if (this->GenerateProjectionLines)
   {
-    vtkNew<vtkPoints> ends;
-    ends->SetDataTypeToDouble();
-    vtkNew<vtkCellArray> segments;
-    auto lineConverged = pss_vtk::NewArray<vtkUnsignedCharArray>("Converged", 0, 1);
-    auto lineReason = pss_vtk::NewArray<vtkIntArray>("StopReason", 0, 1);
-    auto lineStart = pss_vtk::NewArray<vtkIdTypeArray>("StartPointId", 0, 1);
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      const pss::ProjectionResult& r = results[i];
-      if (r.reason == pss::StopReason::InvalidInput)
-      {
-        continue;
-      }
-      const pss::Vec3 start = this->Surface->GetIndex()->restrict(startPoints[i]);
-      const vtkIdType ids[2] = { ends->InsertNextPoint(start.data()), ends->InsertNextPoint(r.point.data()) };
-      segments->InsertNextCell(2, ids);
-      lineConverged->InsertNextValue(r.converged ? 1 : 0);
-      lineReason->InsertNextValue(static_cast<int>(r.reason));
-      lineStart->InsertNextValue(i);
-    }
-    lines->SetPoints(ends);
-    lines->SetLines(segments);
-    lines->GetCellData()->AddArray(lineConverged);
-    lines->GetCellData()->AddArray(lineReason);
-    lines->GetCellData()->AddArray(lineStart);
+    FillProjectionLines(startPoints, arrays, index, lines);
   }
   return 1;
 }

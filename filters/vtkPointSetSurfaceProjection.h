@@ -130,11 +130,10 @@ protected:
     const pss::SurfaceDefinition& surface, const pss::ProjectionOptions& options, pss::Workspace& ws);
 
   /**
-   * Hook for subclasses: add arrays computed from the projections to the output point data.
-   * Called after the standard arrays; return false (after vtkErrorMacro) to fail the update.
+   * Hook for subclasses: add the arrays they filled during the per-point loop to the output point
+   * data. Called after the standard arrays; return false (after vtkErrorMacro) to fail the update.
    */
-  virtual bool AddPointArrays(vtkPointSet* starts, const std::vector<pss::ProjectionResult>& results,
-    vtkPointData* outPD);
+  virtual bool AddPointArrays(vtkPointSet* starts, vtkPointData* outPD);
 #endif
 
   int Procedure = EXTREMAL;

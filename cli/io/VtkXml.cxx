@@ -176,30 +176,35 @@ void CheckConnectivity(
     f.Fail(where + ": no '" + (offsetsElement ? "connectivity" : "offsets") + "' array for its " +
       std::to_string(cells) + " cells");
   }
+  // Streamed: a large cloud's vertex cells are checked without a copy of them.
   const Array offsetsArray = Describe(f, offsetsElement, where + " array");
-  const std::vector<long long> offsets =
-    Integers(f, offsetsArray, Expected{ cells, "one per cell, " + std::to_string(cells) + " cells" });
   long long last = 0;
-  for (std::size_t i = 0; i < offsets.size(); ++i)
-  {
-    if (offsets[i] < last)
-    {
-      f.Fail(offsetsArray.label + ": offset " + std::to_string(offsets[i]) + " of cell " + std::to_string(i) +
-        " is below the previous one (or negative)");
-    }
-    last = offsets[i];
-  }
+  std::uint64_t cell = 0;
+  ForEachInteger(f, offsetsArray, Expected{ cells, "one per cell, " + std::to_string(cells) + " cells" },
+    [&](const long long* offsets, std::size_t n) {
+      for (std::size_t i = 0; i < n; ++i, ++cell)
+      {
+        if (offsets[i] < last)
+        {
+          f.Fail(offsetsArray.label + ": offset " + std::to_string(offsets[i]) + " of cell " + std::to_string(cell) +
+            " is below the previous one (or negative)");
+        }
+        last = offsets[i];
+      }
+    });
   const Array connectivity = Describe(f, connectivityElement, where + " array");
-  const std::vector<long long> ids = Integers(
-    f, connectivity, Expected{ static_cast<std::uint64_t>(last), "the last offset, " + std::to_string(last) });
-  for (std::size_t i = 0; i < ids.size(); ++i)
-  {
-    if (ids[i] < 0 || static_cast<std::uint64_t>(ids[i]) >= points)
-    {
-      f.Fail(connectivity.label + ": entry " + std::to_string(i) + " is point " + std::to_string(ids[i]) +
-        ", outside [0, " + std::to_string(points) + ")");
-    }
-  }
+  std::uint64_t entry = 0;
+  ForEachInteger(f, connectivity,
+    Expected{ static_cast<std::uint64_t>(last), "the last offset, " + std::to_string(last) }, [&](const long long* ids, std::size_t n) {
+      for (std::size_t i = 0; i < n; ++i, ++entry)
+      {
+        if (ids[i] < 0 || static_cast<std::uint64_t>(ids[i]) >= points)
+        {
+          f.Fail(connectivity.label + ": entry " + std::to_string(entry) + " is point " + std::to_string(ids[i]) +
+            ", outside [0, " + std::to_string(points) + ")");
+        }
+      }
+    });
 }
 
 // An unstructured grid's cell types, and the faces of its polyhedra: 'faceoffsets' holds, for

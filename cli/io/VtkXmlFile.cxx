@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -447,41 +448,47 @@ vtkSmartPointer<vtkDataCompressor> NewCompressor(Compressor c)
   return nullptr;
 }
 
-// The decompressed bytes of a checked binary array (the cell arrays, whose values are checked).
-// vtkXMLDataParser's ReadInlineData/ReadAppendedData would decode them too, but they read the
-// size header again with nothing checked (allocating what it claims) and accept a block that
-// decompresses to fewer bytes than it should (VTK's reader then keeps uninitialized values):
-// here every block must decompress to exactly its size.
-std::vector<unsigned char> Decode(File& f, const Array& a, const SizeHeader& h)
+// Hands the decoded bytes of a checked binary array (the cell arrays, whose values are checked)
+// to @p sink piece by piece: one compressed block at a time, or 1 MiB at a time without
+// compression, so that checking a large cell array needs no copy of it (a copy took as long as
+// VTK's whole read of a 10^7-point cloud). vtkXMLDataParser's ReadInlineData/ReadAppendedData
+// would decode them too, but they read the size header again with nothing checked (allocating
+// what it claims) and accept a block that decompresses to fewer bytes than it should (VTK's reader
+// then keeps uninitialized values): here every block must decompress to exactly its size.
+void DecodeInPieces(File& f, const Array& a, const SizeHeader& h,
+  const std::function<void(const unsigned char*, std::size_t)>& sink)
 {
-  std::vector<unsigned char> out;
+  const vtkSmartPointer<vtkInputStream> stream = Open(f, h.data);
+  std::vector<unsigned char> piece;
   if (f.compressor == Compressor::None)
   {
-    const vtkSmartPointer<vtkInputStream> stream = Open(f, h.data);
     Read(stream, f.headerSize, nullptr);
-    out.reserve(h.bytes);
-    Read(stream, h.bytes, &out);
-    return out;
+    constexpr std::uint64_t pieceSize = 1 << 20;
+    for (std::uint64_t left = h.bytes; left > 0;)
+    {
+      const std::uint64_t want = std::min(left, pieceSize);
+      piece.clear();
+      Read(stream, want, &piece);
+      sink(piece.data(), piece.size());
+      left -= want;
+    }
+    return;
   }
-  std::vector<unsigned char> packed;
-  packed.reserve(h.compressed);
-  Read(Open(f, h.data), h.compressed, &packed);
-  out.resize(h.bytes);
   const vtkSmartPointer<vtkDataCompressor> compressor = NewCompressor(f.compressor);
-  std::size_t in = 0;
-  std::size_t at = 0;
+  std::vector<unsigned char> packed;
   for (std::size_t i = 0; i < h.blocks.size(); ++i)
   {
+    packed.clear();
+    Read(stream, h.blocks[i], &packed);
     const std::size_t size = BlockBytes(h, i, h.blocks.size());
-    if (compressor->Uncompress(packed.data() + in, h.blocks[i], out.data() + at, size) != size)
+    piece.resize(size);
+    if (compressor->Uncompress(packed.data(), packed.size(), piece.data(), size) != size)
     {
       f.Fail(a.label + ": compressed block " + std::to_string(i) + " is corrupt (it does not decompress to its " +
         std::to_string(size) + " bytes)");
     }
-    in += h.blocks[i];
-    at += size;
+    sink(piece.data(), size);
   }
-  return out;
 }
 
 long long IntegerAt(const unsigned char* p, const ArrayType& t, bool bigEndian)
@@ -748,7 +755,42 @@ void CheckData(File& f, const Array& a, const Expected* expected)
   CheckSizes(f, a, expected);
 }
 
-std::vector<long long> Integers(File& f, const Array& a, const Expected& expected)
+namespace
+{
+
+// IntegerAt for @p count values of Size bytes: the size known at compile time makes the loop
+// several times faster, which a 10^7-point cloud's vertex cells notice.
+template <std::size_t Size>
+void IntegersAt(const unsigned char* p, std::size_t count, const ArrayType& t, bool bigEndian, long long* out)
+{
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const unsigned char* v = p + i * Size;
+    out[i] = t.kind == 'i' ? LoadSigned(v, Size, bigEndian)
+                           : static_cast<long long>(std::min<std::uint64_t>(
+                               LoadUnsigned(v, Size, bigEndian), std::numeric_limits<long long>::max()));
+  }
+}
+
+void IntegersAt(const unsigned char* p, std::size_t count, const ArrayType& t, bool bigEndian, long long* out)
+{
+  switch (t.size)
+  {
+    case 1:
+      return IntegersAt<1>(p, count, t, bigEndian, out);
+    case 2:
+      return IntegersAt<2>(p, count, t, bigEndian, out);
+    case 4:
+      return IntegersAt<4>(p, count, t, bigEndian, out);
+    default:
+      return IntegersAt<8>(p, count, t, bigEndian, out);
+  }
+}
+
+} // namespace
+
+void ForEachInteger(File& f, const Array& a, const Expected& expected,
+  const std::function<void(const long long*, std::size_t)>& visit)
 {
   if (a.type->kind != 'i' && a.type->kind != 'u')
   {
@@ -759,7 +801,7 @@ std::vector<long long> Integers(File& f, const Array& a, const Expected& expecte
     f.Fail(a.label + ": must have one component");
   }
   const SizeHeader h = CheckSizes(f, a, &expected);
-  std::vector<long long> values;
+  std::uint64_t count = 0;
   if (a.ascii)
   {
     if (expected.values > 0)
@@ -767,18 +809,52 @@ std::vector<long long> Integers(File& f, const Array& a, const Expected& expecte
       AsciiValues(f, a, [&](const std::string& w) {
         long long v = 0;
         ParseSigned(w, v);
-        values.push_back(v);
-        return values.size() < expected.values;
+        visit(&v, 1);
+        return ++count < expected.values;
       });
     }
-    return values;
+    return;
   }
-  const std::vector<unsigned char> bytes = Decode(f, a, h);
+  // A value may straddle two pieces: its first bytes wait in `partial`.
+  const std::size_t size = static_cast<std::size_t>(a.type->size);
+  unsigned char partial[8];
+  std::size_t pending = 0;
+  std::vector<long long> values;
+  DecodeInPieces(f, a, h, [&](const unsigned char* bytes, std::size_t n) {
+    std::size_t at = 0;
+    if (pending > 0)
+    {
+      const std::size_t take = std::min(size - pending, n);
+      std::copy(bytes, bytes + take, partial + pending);
+      pending += take;
+      at = take;
+      if (pending == size && count < expected.values)
+      {
+        const long long v = IntegerAt(partial, *a.type, f.bigEndian);
+        visit(&v, 1);
+        ++count;
+      }
+      pending = pending == size ? 0 : pending;
+    }
+    const std::size_t whole = static_cast<std::size_t>(std::min<std::uint64_t>((n - at) / size, expected.values - count));
+    values.resize(whole);
+    IntegersAt(bytes + at, whole, *a.type, f.bigEndian, values.data());
+    visit(values.data(), whole);
+    count += whole;
+    at += whole * size;
+    if (count < expected.values && at < n)
+    {
+      pending = n - at;
+      std::copy(bytes + at, bytes + n, partial);
+    }
+  });
+}
+
+std::vector<long long> Integers(File& f, const Array& a, const Expected& expected)
+{
+  std::vector<long long> values;
   values.reserve(expected.values);
-  for (std::size_t i = 0; i < expected.values; ++i)
-  {
-    values.push_back(IntegerAt(bytes.data() + i * a.type->size, *a.type, f.bigEndian));
-  }
+  ForEachInteger(f, a, expected, [&](const long long* v, std::size_t n) { values.insert(values.end(), v, v + n); });
   return values;
 }
 

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -130,8 +131,13 @@ Array Describe(const File& f, vtkXMLDataElement* e, const std::string& label);
 /// value count when known (@p expected); counts them towards the file's budget.
 void CheckData(File& f, const Array& a, const Expected* expected);
 
-/// The values of an integer array with one component (offsets, connectivity, types, faces),
-/// checked as CheckData does; there must be exactly @p expected of them.
+/// Hands the values of an integer array with one component (offsets, connectivity, types,
+/// faces) to @p visit in order, a run of them at a time, checked as CheckData does; there must be
+/// exactly @p expected of them. Streams: no copy of the array is made.
+void ForEachInteger(
+  File& f, const Array& a, const Expected& expected, const std::function<void(const long long*, std::size_t)>& visit);
+
+/// ForEachInteger's values, kept.
 std::vector<long long> Integers(File& f, const Array& a, const Expected& expected);
 
 }

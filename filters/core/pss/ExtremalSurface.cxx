@@ -389,7 +389,12 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
 bool forEachStart(const std::vector<Vec3>& starts, const ParallelLoop& loop,
   const std::function<void(std::size_t, Workspace&)>& work)
 {
-  const std::vector<std::uint32_t> order = spatialOrder(starts);
+  return forEachInOrder(spatialOrder(starts), loop, work);
+}
+
+bool forEachInOrder(const std::vector<std::uint32_t>& order, const ParallelLoop& loop,
+  const std::function<void(std::size_t, Workspace&)>& work)
+{
   return loop(order.size(), LoopShare(0.0, 1.0), [&](std::size_t begin, std::size_t end, Workspace& ws) {
     for (std::size_t k = begin; k < end; ++k)
     {

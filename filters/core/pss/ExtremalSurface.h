@@ -133,6 +133,14 @@ void projectEach(const SurfaceDefinition& s, const std::vector<Vec3>& starts, co
 bool forEachStart(const std::vector<Vec3>& starts, const ParallelLoop& loop,
   const std::function<void(std::size_t, Workspace&)>& work);
 
+/**
+ * forEachStart with the visiting order given: @p order holds every start index once (e.g.
+ * spatialOrder(starts), or PointIndex::visitingOrder() when the starts are the indexed cloud,
+ * which needs neither a copy of the points nor a sort).
+ */
+bool forEachInOrder(const std::vector<std::uint32_t>& order, const ParallelLoop& loop,
+  const std::function<void(std::size_t, Workspace&)>& work);
+
 /// projectEach, keeping every result (result i for start i).
 std::vector<ProjectionResult> projectAll(const SurfaceDefinition& s, const std::vector<Vec3>& starts,
   const ProjectionOptions& opt, int threads = 0);

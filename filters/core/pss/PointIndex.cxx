@@ -8,7 +8,9 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <type_traits>
+#include <utility>
 #include <stdexcept>
 #include <variant>
 
@@ -103,8 +105,28 @@ double estimateScale(const PointIndex& index, int k, double multiplier)
   return multiplier * distances[distances.size() / 2];
 }
 
-PointIndex::PointIndex(const std::vector<Vec3>& points, int dimension)
+namespace
+{
+
+// out[i] = in[order[i]] for every i, through @p scratch (left holding the old values): large
+// clouds are permuted twice while the index is built, and reusing one buffer saves the time the
+// system takes to hand out fresh memory.
+template <class T, class Index>
+void permute(std::vector<T>& values, const std::vector<Index>& order, std::vector<T>& scratch)
+{
+  scratch.resize(values.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    scratch[i] = values[order[i]];
+  }
+  values.swap(scratch);
+}
+
+} // namespace
+
+PointIndex::PointIndex(std::vector<Vec3> points, int dimension)
   : Dimension(dimension)
+  , Points(std::move(points))
 {
   static std::atomic<std::uint64_t> counter{ 0 };
   Serial = ++counter;
@@ -112,22 +134,22 @@ PointIndex::PointIndex(const std::vector<Vec3>& points, int dimension)
   {
     throw std::invalid_argument("PointIndex: dimension must be 2 or 3, got " + std::to_string(dimension));
   }
-  if (points.size() >= std::size_t(UINT32_MAX))
+  if (Points.size() >= std::size_t(UINT32_MAX))
   {
     throw std::invalid_argument("PointIndex: more than 2^32 - 1 points are not supported");
   }
-  Points.reserve(points.size());
-  OriginalIds.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
+  // Keep the finite points, in place.
+  OriginalIds.reserve(Points.size());
+  for (std::size_t i = 0; i < Points.size(); ++i)
   {
-    if (!isFinite(points[i]))
+    if (isFinite(Points[i]))
     {
-      ++Skipped;
-      continue;
+      Points[OriginalIds.size()] = restrict(Points[i]);
+      OriginalIds.push_back(static_cast<std::uint32_t>(i));
     }
-    Points.push_back(restrict(points[i]));
-    OriginalIds.push_back(i);
   }
+  Skipped = Points.size() - OriginalIds.size();
+  Points.resize(OriginalIds.size());
   if (!Points.empty())
   {
     Vec3 sum = Vec3::Zero();
@@ -141,6 +163,16 @@ PointIndex::PointIndex(const std::vector<Vec3>& points, int dimension)
     Centroid = sum / static_cast<double>(Points.size());
   }
 
+  // Build the tree over the points in spatial order: its construction partitions index ranges
+  // again and again, and with nearby points at nearby addresses those ranges stay in cache
+  // (measured on a 10^7-point sphere: 4.8-6.7 s in input order, 1.1 s in this order).
+  std::vector<Vec3> scratchPoints;
+  std::vector<std::uint32_t> scratchIds;
+  {
+    const std::vector<std::uint32_t> order = spatialOrder(Points);
+    permute(Points, order, scratchPoints);
+    permute(OriginalIds, order, scratchIds);
+  }
   Impl = std::make_unique<Tree>();
   Impl->adaptor.points = &Points;
   // Leaves of up to 64 points: the neighbourhoods here hold hundreds of points, and walking fewer,
@@ -160,22 +192,38 @@ PointIndex::PointIndex(const std::vector<Vec3>& points, int dimension)
   // permutation, which becomes the identity.
   std::visit(
     [&](auto& tree) {
-      std::vector<Vec3> ordered(Points.size());
-      std::vector<std::size_t> ids(Points.size());
       auto& permutation = nanoflann_internals::permutation(*tree);
-      for (std::size_t i = 0; i < Points.size(); ++i)
-      {
-        ordered[i] = Points[permutation[i]];
-        ids[i] = OriginalIds[permutation[i]];
-        permutation[i] = static_cast<std::uint32_t>(i);
-      }
-      Points.swap(ordered);
-      OriginalIds.swap(ids);
+      permute(Points, permutation, scratchPoints);
+      permute(OriginalIds, permutation, scratchIds);
+      std::iota(permutation.begin(), permutation.end(), 0u);
     },
     Impl->tree);
 }
 
 PointIndex::~PointIndex() = default;
+
+std::vector<std::uint32_t> PointIndex::visitingOrder() const
+{
+  std::vector<std::uint32_t> order(OriginalIds);
+  if (Skipped == 0)
+  {
+    return order;
+  }
+  order.reserve(OriginalIds.size() + Skipped);
+  std::vector<bool> indexed(OriginalIds.size() + Skipped, false);
+  for (const std::uint32_t id : OriginalIds)
+  {
+    indexed[id] = true;
+  }
+  for (std::size_t id = 0; id < indexed.size(); ++id)
+  {
+    if (!indexed[id])
+    {
+      order.push_back(static_cast<std::uint32_t>(id));
+    }
+  }
+  return order;
+}
 
 Vec3 PointIndex::restrict(const Vec3& x) const
 {
@@ -288,6 +336,47 @@ std::uint64_t spreadBits(std::uint64_t v)
   return v;
 }
 
+// The ids of @p keyed in ascending key order, equal keys by ascending id: what std::sort of the
+// (key, id) pairs gives when the ids come in ascending order, as they do here, but a stable
+// least-significant-digit radix sort of 8-bit digits, several times faster on millions of points
+// (a comparison sort's random accesses dominated building the index of a large cloud). Digits
+// that every key shares are skipped.
+std::vector<std::uint32_t> sortedIds(std::vector<std::pair<std::uint64_t, std::uint32_t>>& keyed)
+{
+  constexpr int Bits = 8;
+  constexpr std::size_t Buckets = std::size_t(1) << Bits;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> scratch(keyed.size());
+  std::vector<std::size_t> start(Buckets);
+  for (int shift = 0; shift < 64; shift += Bits)
+  {
+    std::fill(start.begin(), start.end(), 0);
+    for (const auto& k : keyed)
+    {
+      ++start[(k.first >> shift) & (Buckets - 1)];
+    }
+    if (std::find(start.begin(), start.end(), keyed.size()) != start.end())
+    {
+      continue; // one digit value for all: this pass would not move anything
+    }
+    std::size_t sum = 0;
+    for (std::size_t& b : start)
+    {
+      sum += std::exchange(b, sum);
+    }
+    for (const auto& k : keyed)
+    {
+      scratch[start[(k.first >> shift) & (Buckets - 1)]++] = k;
+    }
+    keyed.swap(scratch);
+  }
+  std::vector<std::uint32_t> order(keyed.size());
+  for (std::size_t i = 0; i < keyed.size(); ++i)
+  {
+    order[i] = keyed[i].second;
+  }
+  return order;
+}
+
 } // namespace
 
 std::vector<std::uint32_t> spatialOrder(const std::vector<Vec3>& points)
@@ -331,13 +420,7 @@ std::vector<std::uint32_t> spatialOrder(const std::vector<Vec3>& points)
     }
     keyed[i] = { code, static_cast<std::uint32_t>(i) };
   }
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<std::uint32_t> order(points.size());
-  for (std::size_t i = 0; i < keyed.size(); ++i)
-  {
-    order[i] = keyed[i].second;
-  }
-  return order;
+  return sortedIds(keyed);
 }
 
 void PointIndex::leavesInBall(const Vec3& x, double sqRadius, LeafRanges& ranges) const

@@ -25,9 +25,9 @@ namespace pss
 class PointIndex
 {
 public:
-  /// @param points the cloud; @param dimension 2 (xy-plane) or 3. Throws std::invalid_argument
-  /// for any other dimension.
-  PointIndex(const std::vector<Vec3>& points, int dimension);
+  /// @param points the cloud (taken by value: move a large cloud in, the index keeps its memory);
+  /// @param dimension 2 (xy-plane) or 3. Throws std::invalid_argument for any other dimension.
+  PointIndex(std::vector<Vec3> points, int dimension);
   ~PointIndex();
   PointIndex(const PointIndex&) = delete;
   PointIndex& operator=(const PointIndex&) = delete;
@@ -42,6 +42,10 @@ public:
   const std::vector<Vec3>& points() const { return Points; }
   /// Index in the constructor's input of indexed point @p i.
   std::size_t originalId(std::size_t i) const { return OriginalIds[i]; }
+
+  /// Every index of the constructor's input once: the indexed points in leaf order (neighbours
+  /// together, as in spatialOrder()), then the skipped ones in ascending order.
+  std::vector<std::uint32_t> visitingOrder() const;
 
   /// Centroid and axis-aligned bounds of the indexed points (zero when empty).
   const Vec3& centroid() const { return Centroid; }
@@ -91,7 +95,7 @@ private:
   void leavesInBall(const Vec3& x, double sqRadius, LeafRanges& ranges) const;
   int Dimension;
   std::vector<Vec3> Points;
-  std::vector<std::size_t> OriginalIds;
+  std::vector<std::uint32_t> OriginalIds; // fits: at most 2^32 - 2 points
   std::size_t Skipped = 0;
   std::uint64_t Serial = 0;
   Vec3 Centroid = Vec3::Zero();
@@ -102,8 +106,8 @@ private:
 
 /**
  * A visiting order for @p points that keeps neighbours together: ascending Morton (Z-order) code
- * of each point's cell in a 2^21 grid over the points' bounding box, ties by position, points
- * with a NaN or infinite coordinate last. Projections visited in this order reuse each other's
+ * of each point's cell in a 2^21 grid over the points' bounding box, ties in input order, points
+ * with a NaN or infinite coordinate last (in input order). Projections visited in this order reuse each other's
  * cached neighbours, and memory is read coherently, whatever order the input came in.
  * Throws std::invalid_argument beyond 2^32 - 1 points.
  */
