@@ -16,6 +16,12 @@
  *   items are triangles, and a line under the row gives each stage's time and the mesh's counts.
  * - field-1024: field sampling of a 1024 x 1024 grid around a 5,000-point noisy curve
  *   (CenterOfMass, every array), through vtkPointSetSurfaceFieldSampler (when VTK is built).
+ * - pss-Nm: the whole `pss project` process on a noisy sphere of N million points written by
+ *   `pss generate --scene sphere --count N --noise 0.01` (center of mass, plane procedure,
+ *   automatic h, 2 threads): each stage's wall time from `--verbose`, the share of the stages
+ *   other than compute, and the process's peak memory per point. 1M and 10M run by default
+ *   (not with --quick); 100M only when --rows names it ("pss-100m": about 20 GB and 10 minutes).
+ *   The files go to $TMPDIR (default /tmp) and are removed afterwards.
  *
  * Columns: points (or samples) per second, mean iterations, mean neighbours (points with a
  * weight above exp(-9) of the nearest one at the final point), peak RSS of the row's process when
@@ -49,6 +55,7 @@
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <map>
 #include <vector>
 
 namespace
@@ -334,6 +341,82 @@ bool RunRow(const char* name, const std::function<RowResult()>& body)
   return true;
 }
 
+#ifdef PSS_BENCH_PSS
+// Runs @p command through the shell; returns its standard error, or nothing when it failed.
+bool RunCommand(const std::string& command, std::string& stderrText)
+{
+  std::FILE* pipe = popen((command + " 2>&1 >/dev/null").c_str(), "r");
+  if (!pipe)
+  {
+    return false;
+  }
+  char buffer[512];
+  while (std::fgets(buffer, sizeof(buffer), pipe))
+  {
+    stderrText += buffer;
+  }
+  return pclose(pipe) == 0;
+}
+
+// The whole `pss project` process on a generated sphere of @p n points: the stage times and the
+// peak memory its --verbose prints, and the wall time around it.
+void WholeProcessRow(const std::string& name, std::size_t n)
+{
+  const char* tmp = std::getenv("TMPDIR");
+  const std::string dir = tmp && *tmp ? tmp : "/tmp";
+  const std::string cloud = dir + "/pss-bench-" + std::to_string(getpid()) + "-cloud.vtp";
+  const std::string output = dir + "/pss-bench-" + std::to_string(getpid()) + "-projected.vtp";
+  const std::string pss = PSS_BENCH_PSS;
+  std::string log;
+  if (!RunCommand(pss + " generate --scene sphere --count " + std::to_string(n) + " --noise 0.01 -o " + cloud, log))
+  {
+    std::printf("%-34s failed to generate the cloud: %s\n", name.c_str(), log.c_str());
+    std::remove(cloud.c_str());
+    return;
+  }
+  log.clear();
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool ok = RunCommand(
+    pss + " project " + cloud + " -o " + output + " --procedure plane --threads 2 --verbose --no-progress", log);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::remove(cloud.c_str());
+  std::remove(output.c_str());
+  // Lines "pss: STAGE   SECONDS s" and "pss: peak memory MIB MiB".
+  std::map<std::string, double> stage;
+  double peakMiB = 0.0;
+  std::size_t at = 0;
+  while (at < log.size())
+  {
+    const std::size_t end = std::min(log.find('\n', at), log.size());
+    const std::string line = log.substr(at, end - at);
+    at = end + 1;
+    char word[32] = "";
+    double value = 0.0;
+    if (std::sscanf(line.c_str(), "pss: peak memory %lf MiB", &value) == 1)
+    {
+      peakMiB = value;
+    }
+    else if (std::sscanf(line.c_str(), "pss: %31s %lf s", word, &value) == 2)
+    {
+      stage[word] += value;
+    }
+  }
+  if (!ok || stage.count("compute") == 0 || peakMiB <= 0.0)
+  {
+    std::printf("%-34s failed: %s\n", name.c_str(), log.c_str());
+    return;
+  }
+  const double bytesPerPoint = peakMiB * 1024.0 * 1024.0 / static_cast<double>(n);
+  std::printf("%-34s %9zu %11.0f %6s %7s %9.1f %7.0f %9s\n", name.c_str(), n, static_cast<double>(n) / wall, "-", "-",
+    peakMiB, bytesPerPoint, "-");
+  // Everything but compute counts against it, process start and exit included.
+  std::printf("  read %.2f s, index %.2f s, compute %.2f s, write %.2f s, whole process %.2f s: "
+              "all but compute %.1f%% of the whole process\n",
+    stage["read"], stage["index"], stage["compute"], stage["write"], wall, 100.0 * (wall - stage["compute"]) / wall);
+  std::fflush(stdout);
+}
+#endif
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -444,11 +527,23 @@ int main(int argc, char** argv)
     }
   }
 #endif
+#ifdef PSS_BENCH_PSS
+  for (std::size_t millions : { 1, 10, 100 })
+  {
+    const std::string name = "pss-" + std::to_string(millions) + "m com plane t2";
+    // 100M takes about 20 GB and 10 minutes: only when --rows names it.
+    if (!quick && wanted(name) && (millions < 100 || only.find("100m") != std::string::npos))
+    {
+      WholeProcessRow(name, millions * 1000000);
+    }
+  }
+#endif
   std::printf("\nitems/s: projected points (or grid samples) per second of wall time; iters: mean iterations;\n"
               "neighb: mean neighbours with weight > exp(-9) of the nearest; peak MiB: the row process's\n"
               "peak resident memory when the timed work ended; B/point: that peak minus what the process\n"
               "held at its start, per input point (per sample for the field rows), including the row's\n"
               "own copy of the input (24 B/point), its index and its outputs (end points, iterations);\n"
-              "median um: median distance to bun_zipper.ply in micrometres.\n");
+              "median um: median distance to bun_zipper.ply in micrometres. pss-Nm rows: items/s over the\n"
+              "whole process's wall time, peak MiB the process's peak, B/point that peak per point.\n");
   return 0;
 }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -37,6 +38,89 @@ TEST(PointIndex, SkipsNonFinitePointsAndMapsIds)
   const auto nn = index.nearest(Vec3(1, 2, 2.9));
   EXPECT_EQ(index.originalId(nn.first), 2u);
   EXPECT_NEAR(nn.second, 0.01, 1e-12);
+}
+
+// Truth: visitingOrder() lists every input index exactly once, the indexed points first (in the
+// index's own order) and the skipped non-finite ones last, ascending.
+TEST(PointIndex, VisitingOrderCoversEveryInputOnce)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<Vec3> input;
+  for (int i = 0; i < 500; ++i)
+  {
+    input.emplace_back(std::cos(0.37 * i) * i, std::sin(0.37 * i) * i, (i % 7 == 3) ? nan : 0.01 * i);
+  }
+  PointIndex index(input, 3);
+  const std::vector<std::uint32_t> order = index.visitingOrder();
+  ASSERT_EQ(order.size(), input.size());
+  for (std::size_t k = 0; k < index.size(); ++k)
+  {
+    EXPECT_EQ(order[k], index.originalId(k));
+  }
+  EXPECT_TRUE(std::is_sorted(order.begin() + static_cast<std::ptrdiff_t>(index.size()), order.end()));
+  std::vector<std::uint32_t> sorted(order);
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+  {
+    EXPECT_EQ(sorted[i], i);
+  }
+}
+
+// Truth: spatialOrder is a stable sort by Morton code. Its radix sort must give exactly what a
+// comparison sort of (code, index) pairs gives, including ties (duplicates) and non-finite points
+// (last); the codes are recomputed here from the definition (cells of a 2^21 grid, x in bit 0).
+TEST(PointIndex, SpatialOrderIsTheStableMortonOrder)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<Vec3> points;
+  for (int i = 0; i < 3000; ++i)
+  {
+    const double t = 0.001 * i * i;
+    points.emplace_back(std::fmod(t, 17.0), std::fmod(3.0 * t, 5.0) - 2.0, std::fmod(7.0 * t, 11.0));
+  }
+  points.push_back(points[10]); // a duplicate: same code, input order decides
+  points.emplace_back(inf, 0.0, 0.0);
+  points.push_back(points[20]);
+  Vec3 lo = Vec3::Constant(inf);
+  Vec3 hi = -lo;
+  for (const Vec3& p : points)
+  {
+    if (isFinite(p))
+    {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  auto code = [&](const Vec3& p) {
+    if (!isFinite(p))
+    {
+      return std::numeric_limits<std::uint64_t>::max();
+    }
+    std::uint64_t c = 0;
+    const double cells = double((1u << 21) - 1);
+    for (int d = 0; d < 3; ++d)
+    {
+      const double scale = cells / (hi[d] - lo[d]);
+      const auto cell = static_cast<std::uint64_t>(std::min(cells, std::max(0.0, (p[d] - lo[d]) * scale)));
+      for (int b = 0; b < 21; ++b)
+      {
+        c |= ((cell >> b) & 1u) << (3 * b + d);
+      }
+    }
+    return c;
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    keyed.emplace_back(code(points[i]), static_cast<std::uint32_t>(i));
+  }
+  std::sort(keyed.begin(), keyed.end());
+  const std::vector<std::uint32_t> order = spatialOrder(points);
+  ASSERT_EQ(order.size(), keyed.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    EXPECT_EQ(order[i], keyed[i].second) << "position " << i;
+  }
 }
 
 // Truth: in 2D z is ignored (a z-offset query has the same nearest distance), other dimensions throw.

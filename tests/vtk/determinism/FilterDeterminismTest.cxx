@@ -39,6 +39,7 @@
 #include <iostream>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -299,6 +300,32 @@ TEST(FilterDeterminism, Projection)
       }
     }
   }
+}
+
+// The cloud's own points are visited in the index's leaf order, other start points in Morton
+// order (vtkPointSetSurfaceProjection::RequestData): the order must not change a single bit. A
+// NaN point exercises the skipped points, which come last in the first order.
+TEST(FilterDeterminism, ProjectionIndependentOfVisitingOrder)
+{
+  vtkSmartPointer<vtkPolyData> cloud = NoisySphere();
+  cloud->GetPoints()->SetPoint(17, std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0);
+  vtkNew<vtkPolyData> sameStarts;
+  sameStarts->DeepCopy(cloud);
+  std::vector<vtkSmartPointer<vtkDataObject>> outputs;
+  for (vtkPolyData* starts : { cloud.Get(), static_cast<vtkPolyData*>(sameStarts) })
+  {
+    vtkNew<vtkPointSetSurfaceDomainClassifier> classifier;
+    classifier->SetInputData(cloud);
+    classifier->SetStartPointsData(starts);
+    classifier->GetSurface()->SetVariant(vtkPointSetSurface::CENTER_OF_MASS);
+    classifier->GenerateProjectionLinesOn();
+    classifier->Update();
+    outputs.push_back(Copy(classifier->GetOutput(0)));
+    outputs.push_back(Copy(classifier->GetOutput(1)));
+  }
+  ASSERT_EQ(vtkPolyData::SafeDownCast(outputs[0])->GetNumberOfPoints(), cloud->GetNumberOfPoints());
+  ExpectSameOutput(outputs[0], outputs[2], "projected points, starts = cloud vs a copy of it");
+  ExpectSameOutput(outputs[1], outputs[3], "projection lines, starts = cloud vs a copy of it");
 }
 
 TEST(FilterDeterminism, DomainClassifier)
