@@ -5,7 +5,7 @@
 
 Reads DIR/case.json (the cloud .pvtp, optional start points .pvtp, surface settings), applies the
 projection and the domain classifier, and writes each rank's own output of each filter to
-DIR/NAME_<filter>_<rank>.vtp (double coordinates, binary: bit-exact). Ends normally (pvbatch then
+DIR/NAME_<filter>_<rank>.vtp (double coordinates, binary: bit-exact; no file for an empty output). Ends normally (pvbatch then
 finalizes MPI on every rank); the driver judges the files and the error messages.
 """
 import argparse
@@ -37,7 +37,10 @@ for name, make in (("projection", PointSetSurfaceProjection), ("classifier", Poi
     for key, value in case.get("surface", {}).items():
         setattr(proxy, key, value)
     proxy.UpdatePipeline()
+    output = proxy.GetClientSideObject().GetOutputDataObject(0)
+    if output.GetNumberOfPoints() == 0:
+        continue  # no file: VTK's reader complains about a piece without points
     writer = vtkXMLPolyDataWriter()
-    writer.SetInputData(proxy.GetClientSideObject().GetOutputDataObject(0))
+    writer.SetInputData(output)
     writer.SetFileName(os.path.join(args.case, "%s_%s_%d.vtp" % (args.out, name, rank)))
     writer.Write()

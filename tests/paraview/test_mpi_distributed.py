@@ -112,7 +112,10 @@ def make_case(directory):
 
 
 def run(command, name):
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+    # pvpython is itself an MPI singleton: its OpenMPI/PMIx variables would make mpiexec's ranks
+    # join it instead of starting their own world.
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "PRTE_"))}
+    env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                OMPI_MCA_rmaps_base_oversubscribe="1")
     start = time.time()
     try:
@@ -127,6 +130,9 @@ def run(command, name):
 
 
 def read(path):
+    """The polydata in path, or an empty one when the worker wrote none (an empty output)."""
+    if not os.path.exists(path):
+        return vtkPolyData()
     reader = vtkXMLPolyDataReader()
     reader.SetFileName(path)
     reader.Update()

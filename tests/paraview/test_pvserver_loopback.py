@@ -82,7 +82,10 @@ def main():
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+    # pvpython is itself an MPI singleton: its OpenMPI/PMIx variables would make mpiexec's ranks
+    # join it instead of starting their own world.
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "PRTE_"))}
+    env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
                OMPI_MCA_rmaps_base_oversubscribe="1")
     server = subprocess.Popen([args.mpiexec, "--oversubscribe", "-np", "2", args.pvserver, "--server-port=%d" % port],
                               env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
