@@ -110,7 +110,8 @@ bool PrepareSurface(
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   if (!gathered && controller && controller->GetNumberOfProcesses() > 1)
   {
-    vtkErrorWithObjectMacro(algorithm, << "runs in one process only (it does not run distributed yet), and this run has "
+    vtkErrorWithObjectMacro(algorithm, << "runs in one process only (it does not run distributed yet), and this "
+                                          "run has "
                                        << controller->GetNumberOfProcesses()
                                        << " (MPI): each rank would see only its piece of the cloud. Run it in one "
                                           "process (pvpython, or pvbatch without mpiexec), or on the merged cloud");
@@ -130,7 +131,8 @@ bool PrepareSurface(
   return true;
 }
 
-vtkSmartPointer<vtkPolyData> GatherCloud(vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud)
+vtkSmartPointer<vtkPolyData> GatherCloud(
+  vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud)
 {
   const vtkIdType n = cloud ? cloud->GetNumberOfPoints() : 0;
   std::vector<double> local(static_cast<std::size_t>(3 * n));

@@ -74,7 +74,8 @@ bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPoi
  * pieces concatenated. Returns nullptr on every rank (after an error of @p algorithm) when the
  * cloud has more coordinates than one MPI message holds (2^31 - 1).
  */
-vtkSmartPointer<vtkPolyData> GatherCloud(vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud);
+vtkSmartPointer<vtkPolyData> GatherCloud(
+  vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud);
 
 /// Collective over @p controller: the number of items on the ranks before this one (each rank
 /// has @p count), i.e. the global id of this rank's first item when pieces are concatenated.

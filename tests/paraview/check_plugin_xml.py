@@ -222,7 +222,8 @@ def main():
 
     print("checked %d proxies, %d defaults against the headers" % (len(proxies), checked_defaults))
     if checked_multiprocess < 5:
-        problems.append("only %d filters' multiprocess support checked: the XML or the header parser is broken" % checked_multiprocess)
+        problems.append("only %d filters' multiprocess support checked: the XML or the header parser is broken"
+                        % checked_multiprocess)
     if checked_defaults < 40:
         problems.append("only %d defaults checked: the XML or the header parser is broken" % checked_defaults)
     for p in problems:

@@ -5,8 +5,9 @@
 
 Reads DIR/case.json (the cloud .pvtp, optional start points .pvtp, surface settings), applies the
 projection and the domain classifier, and writes each rank's own output of each filter to
-DIR/NAME_<filter>_<rank>.vtp (double coordinates, binary: bit-exact; no file for an empty output). Ends normally (pvbatch then
-finalizes MPI on every rank); the driver judges the files and the error messages.
+DIR/NAME_<filter>_<rank>.vtp (double coordinates, binary: bit-exact; no file for an empty
+output). Ends normally (pvbatch then finalizes MPI on every rank); the driver judges the files
+and the error messages.
 """
 import argparse
 import json

@@ -111,7 +111,7 @@ def main():
     finally:
         # pvserver ends when its client disconnects; stop it only if it did not.
         try:
-            server.wait(timeout=30)
+            server.wait(timeout=5)
         except subprocess.TimeoutExpired:
             server.terminate()
             server.wait(timeout=30)
