@@ -12,8 +12,10 @@
 #include "vtkTypeInt64Array.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPointSetSurface.h"
+#include "vtkPolyData.h"
 
 #include <algorithm>
+#include <climits>
 #include <cstdint>
 
 namespace pss_vtk
@@ -94,20 +96,22 @@ void PrintSurface(ostream& os, vtkIndent indent, vtkPointSetSurface* surface)
   }
 }
 
-bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPointSet* cloud, const char* what)
+bool PrepareSurface(
+  vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPointSet* cloud, const char* what, bool gathered)
 {
   if (!surface)
   {
     vtkErrorWithObjectMacro(algorithm, << "no vtkPointSetSurface is set");
     return false;
   }
-  // Until the filters run distributed, each rank of an MPI run would take its own piece as the
-  // whole cloud (its own h, centroid and neighbours) and silently differ from a one-process run
-  // near every piece's border: refuse instead.
+  // A filter that does not gather the cloud would take each rank's piece as the whole cloud (its
+  // own h, centroid and neighbours) and silently differ from a one-process run near every piece's
+  // border: refuse instead.
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  if (controller && controller->GetNumberOfProcesses() > 1)
+  if (!gathered && controller && controller->GetNumberOfProcesses() > 1)
   {
-    vtkErrorWithObjectMacro(algorithm, << "runs in one process only, and this run has "
+    vtkErrorWithObjectMacro(algorithm, << "runs in one process only (it does not run distributed yet), and this "
+                                          "run has "
                                        << controller->GetNumberOfProcesses()
                                        << " (MPI): each rank would see only its piece of the cloud. Run it in one "
                                           "process (pvpython, or pvbatch without mpiexec), or on the merged cloud");
@@ -125,6 +129,59 @@ bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPoi
                                          << " cloud point(s) with NaN or infinite coordinates were left out of the surface");
   }
   return true;
+}
+
+vtkSmartPointer<vtkPolyData> GatherCloud(
+  vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud)
+{
+  const vtkIdType n = cloud ? cloud->GetNumberOfPoints() : 0;
+  std::vector<double> local(static_cast<std::size_t>(3 * n));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    cloud->GetPoint(i, local.data() + 3 * i);
+  }
+  const int ranks = controller->GetNumberOfProcesses();
+  std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks));
+  std::vector<vtkIdType> offsets(static_cast<std::size_t>(ranks));
+  const vtkIdType sendLength = 3 * n;
+  controller->AllGather(&sendLength, lengths.data(), 1);
+  vtkIdType total = 0;
+  for (int r = 0; r < ranks; ++r)
+  {
+    offsets[static_cast<std::size_t>(r)] = total;
+    total += lengths[static_cast<std::size_t>(r)];
+  }
+  // MPI counts are ints; every rank knows the total, so all of them fail here together.
+  if (total > vtkIdType(INT_MAX))
+  {
+    vtkErrorWithObjectMacro(algorithm, << "the cloud of all ranks (" << total / 3
+                                       << " points) exceeds one MPI message (2^31 - 1 coordinates)");
+    return nullptr;
+  }
+  auto coordinates = vtkSmartPointer<vtkDoubleArray>::New();
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(total / 3);
+  if (total > 0)
+  {
+    controller->AllGatherV(local.data(), coordinates->GetPointer(0), sendLength, lengths.data(), offsets.data());
+  }
+  vtkNew<vtkPoints> points;
+  points->SetData(coordinates);
+  auto whole = vtkSmartPointer<vtkPolyData>::New();
+  whole->SetPoints(points);
+  return whole;
+}
+
+vtkIdType GlobalOffset(vtkMultiProcessController* controller, vtkIdType count)
+{
+  std::vector<vtkIdType> counts(static_cast<std::size_t>(controller->GetNumberOfProcesses()));
+  controller->AllGather(&count, counts.data(), 1);
+  vtkIdType offset = 0;
+  for (int r = 0; r < controller->GetLocalProcessId(); ++r)
+  {
+    offset += counts[static_cast<std::size_t>(r)];
+  }
+  return offset;
 }
 
 }

@@ -19,9 +19,11 @@
 
 class vtkAlgorithm;
 class vtkDataObject;
+class vtkMultiProcessController;
 class vtkObject;
 class vtkPointSet;
 class vtkPointSetSurface;
+class vtkPolyData;
 
 namespace pss_vtk
 {
@@ -58,8 +60,26 @@ void PrintSurface(ostream& os, vtkIndent indent, vtkPointSetSurface* surface);
  * What every filter does first: prepares @p surface on @p cloud, reporting a missing surface or a
  * failed Prepare() as an error of @p algorithm ("cannot define the surface<what>: ...") and
  * returning false, and warning when cloud points with NaN/Inf coordinates were left out.
+ * Unless @p gathered says that @p cloud is already the whole cloud of every rank (GatherCloud),
+ * an MPI run of more than one process is refused: each rank would take its piece for the whole.
  */
-bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPointSet* cloud, const char* what = "");
+bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPointSet* cloud, const char* what = "",
+  bool gathered = false);
+
+/**
+ * Collective over @p controller: every rank's @p cloud points (nullptr counts as none) as one
+ * double-precision point set on every rank, ranks in order, each rank's points in their order,
+ * NaN/Inf points included (Prepare sets them aside and counts them as in one process). So the
+ * surface, its automatic h, centroid and bounds are bitwise those of the one-process run over the
+ * pieces concatenated. Returns nullptr on every rank (after an error of @p algorithm) when the
+ * cloud has more coordinates than one MPI message holds (2^31 - 1).
+ */
+vtkSmartPointer<vtkPolyData> GatherCloud(
+  vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud);
+
+/// Collective over @p controller: the number of items on the ranks before this one (each rank
+/// has @p count), i.e. the global id of this rank's first item when pieces are concatenated.
+vtkIdType GlobalOffset(vtkMultiProcessController* controller, vtkIdType count);
 
 }
 

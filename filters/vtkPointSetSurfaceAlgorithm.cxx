@@ -5,7 +5,9 @@
 #include "vtkPointSetSurface.h"
 
 #include "vtkInformation.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
+#include "vtkPolyData.h"
 
 vtkCxxSetObjectMacro(vtkPointSetSurfaceAlgorithm, Surface, vtkPointSetSurface);
 
@@ -39,9 +41,25 @@ int vtkPointSetSurfaceAlgorithm::FillInputPortInformation(int port, vtkInformati
   return 1;
 }
 
+vtkMultiProcessController* vtkPointSetSurfaceAlgorithm::DistributedController() const
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  return this->SupportsDistributedRun() && controller && controller->GetNumberOfProcesses() > 1 ? controller
+                                                                                                 : nullptr;
+}
+
 bool vtkPointSetSurfaceAlgorithm::PrepareSurface(vtkPointSet* cloud, const char* what)
 {
-  return pss_vtk::PrepareSurface(this, this->Surface, cloud, what);
+  vtkMultiProcessController* controller = this->DistributedController();
+  if (!controller)
+  {
+    this->GatheredCloud = nullptr;
+    return pss_vtk::PrepareSurface(this, this->Surface, cloud, what);
+  }
+  // The whole cloud on every rank makes h, centroid, bounds and every neighbourhood those of the
+  // one-process run by construction, whatever the split.
+  this->GatheredCloud = pss_vtk::GatherCloud(this, controller, cloud);
+  return this->GatheredCloud && pss_vtk::PrepareSurface(this, this->Surface, this->GatheredCloud, what, true);
 }
 
 void vtkPointSetSurfaceAlgorithm::PrintSelf(ostream& os, vtkIndent indent)

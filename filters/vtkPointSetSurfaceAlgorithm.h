@@ -19,9 +19,12 @@
 
 #include "PointSetSurfacesFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h" // for vtkSmartPointer
 
+class vtkMultiProcessController;
 class vtkPointSet;
 class vtkPointSetSurface;
+class vtkPolyData;
 
 class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceAlgorithm : public vtkPolyDataAlgorithm
 {
@@ -50,11 +53,26 @@ protected:
   /**
    * Prepares the surface on @p cloud; on failure reports an error ("cannot define the
    * surface<what>: ...") and returns false. Warns when cloud points with NaN or infinite
-   * coordinates were left out.
+   * coordinates were left out. In a distributed run (DistributedController()) it is collective:
+   * the surface is prepared on every rank's cloud gathered, so every rank gets the one-process
+   * surface, or the same error; other filters refuse a run of more than one process.
    */
   bool PrepareSurface(vtkPointSet* cloud, const char* what = "");
 
+  /**
+   * Whether this filter gives the one-process result in an MPI run of several processes, each
+   * rank computing its own points on the gathered cloud. Default false: such a run is refused.
+   */
+  virtual bool SupportsDistributedRun() const { return false; }
+
+  /// The global controller when this update runs distributed (SupportsDistributedRun() and more
+  /// than one process), else nullptr.
+  vtkMultiProcessController* DistributedController() const;
+
   vtkPointSetSurface* Surface = nullptr;
+
+  /// Every rank's cloud gathered by the last distributed update: the prepared surface refers to it.
+  vtkSmartPointer<vtkPolyData> GatheredCloud;
 
 private:
   vtkPointSetSurfaceAlgorithm(const vtkPointSetSurfaceAlgorithm&) = delete;

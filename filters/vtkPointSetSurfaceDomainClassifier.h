@@ -32,6 +32,9 @@
  * `DistanceToCloud`, `NormalAngle` and `StartAngle` describe a fixed point, so they are NaN exactly
  * where there is none: DomainLabel 2 or 3.
  *
+ * Runs distributed under MPI as the projection does (see vtkPointSetSurfaceProjection): labels
+ * and evidence equal to the one-process run, output with `GlobalPointIds`.
+ *
  * @sa vtkPointSetSurfaceProjection vtkPointSetSurface
  */
 #ifndef vtkPointSetSurfaceDomainClassifier_h

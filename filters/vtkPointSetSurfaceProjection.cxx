@@ -12,6 +12,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
@@ -171,6 +172,10 @@ int vtkPointSetSurfaceProjection::RequestData(
   {
     return 0;
   }
+  // Collective, so taken before any rank may return early for lack of start points.
+  vtkMultiProcessController* controller = this->DistributedController();
+  const vtkIdType firstGlobalId =
+    controller ? pss_vtk::GlobalOffset(controller, starts ? starts->GetNumberOfPoints() : 0) : 0;
   if (!starts || starts->GetNumberOfPoints() == 0)
   {
     return 1; // nothing to project: empty outputs
@@ -239,6 +244,15 @@ int vtkPointSetSurfaceProjection::RequestData(
   {
     output->Initialize();
     return 0;
+  }
+  if (controller && !outPD->GetGlobalIds())
+  {
+    auto ids = pss_vtk::NewArray<vtkIdTypeArray>("GlobalPointIds", n, 1);
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      ids->SetValue(i, firstGlobalId + i);
+    }
+    outPD->SetGlobalIds(ids);
   }
   if (this->GenerateProjectionLines)
   {

@@ -26,6 +26,14 @@
  * Runs threaded through vtkSMPTools (on the backend the application chose: see
  * vtkPointSetSurface::UseThreadedBackend), reports progress and honours AbortExecute.
  *
+ * Distributed: under a global vtkMultiProcessController of more than one process (mpiexec
+ * pvbatch/pvserver) every rank must execute; the cloud pieces of all ranks are gathered on every
+ * rank (in rank order), so the surface (automatic h, orientation, bounds) is bitwise the one of a
+ * one-process run over the concatenated pieces, and each rank projects its own start points. The
+ * output stays distributed; without global ids in the start points it gets `GlobalPointIds`
+ * (the point's index in the concatenated start points). Each rank holds the whole cloud: memory
+ * per rank does not shrink with more ranks yet.
+ *
  * @sa vtkPointSetSurface vtkPointSetSurfaceDomainClassifier
  */
 #ifndef vtkPointSetSurfaceProjection_h
@@ -111,6 +119,9 @@ protected:
   ~vtkPointSetSurfaceProjection() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// Projection and classification give the one-process result in a distributed run.
+  bool SupportsDistributedRun() const override { return true; }
 
 #ifndef __VTK_WRAP__
   /**

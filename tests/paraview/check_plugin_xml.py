@@ -12,7 +12,10 @@ Fails (exit status 1, one line per problem) when
 - a range or enumeration domain allows values that the C++ setter's vtkSetClampMacro clamps away;
 - a class of the VTK module has no proxy (vtkPointSetSurfaceImplicitFunction excepted: it is not a
   pipeline object, see README "ParaView plugin"; nor the abstract vtkPointSetSurfaceAlgorithm), or the surface sub-proxy does not expose every
-  property of the PointSetSurface proxy.
+  property of the PointSetSurface proxy;
+- a filter whose class (or superclass) says it runs distributed (SupportsDistributedRun() returning
+  true) is still multiprocess_support="single_process", or a single_process filter does not say
+  why in its documentation ("Single process only ...").
 Plain Python (no ParaView needed); run with pvpython so ctest needs nothing else.
 """
 import argparse
@@ -68,6 +71,8 @@ class Header:
             r"vtkSetClampMacro\(\s*(\w+)\s*,\s*(\w+)\s*,\s*([^,]+?)\s*,\s*([^)]+?)\s*\)", text
         ):
             self.clamps[name] = (lo, hi)
+        distributed = re.search(r"bool\s+SupportsDistributedRun\(\)\s*const[^{]*\{\s*return\s+(true|false)\s*;", text)
+        self.distributed = None if distributed is None else distributed.group(1) == "true"
         base = re.search(r"class\s+\w+\s+(\w+)\s*:\s*public\s+(\w+)", text)
         self.base = base.group(2) if base else None
 
@@ -108,6 +113,7 @@ def main():
     problems = []
     root = ET.parse(args.xml).getroot()
     checked_defaults = 0
+    checked_multiprocess = 0
 
     proxies = {}
     for group in root.findall("ProxyGroup"):
@@ -131,6 +137,15 @@ def main():
             if not chain:
                 problems.append("%s: no header for class %s in %s" % (where, proxy.get("class"), args.filters))
                 continue
+            # The nearest declaration in the chain decides, as C++ overriding does.
+            distributed = next((h.distributed for h in chain if h.distributed is not None), False)
+            single = proxy.get("multiprocess_support") == "single_process"
+            if distributed and single:
+                problems.append("%s: runs distributed but is still multiprocess_support=single_process" % where)
+            if single and "Single process only" not in ((doc.text or "") if doc is not None else ""):
+                problems.append("%s: single_process without the reason in its documentation" % where)
+            if single or distributed:
+                checked_multiprocess += 1
             for prop in proxy:
                 if not prop.tag.endswith("Property"):
                     continue
@@ -206,6 +221,9 @@ def main():
                 problems.append("%s: no surface sub-proxy" % name)
 
     print("checked %d proxies, %d defaults against the headers" % (len(proxies), checked_defaults))
+    if checked_multiprocess < 5:
+        problems.append("only %d filters' multiprocess support checked: the XML or the header parser is broken"
+                        % checked_multiprocess)
     if checked_defaults < 40:
         problems.append("only %d defaults checked: the XML or the header parser is broken" % checked_defaults)
     for p in problems:

@@ -1,7 +1,8 @@
-"""Run by `mpiexec -np 2 pvbatch --symmetric` (ctest ParaView.Mpi.RefusedInsteadOfWrong): until the
-filters run distributed, a run with more than one process must refuse every filter that defines
-a surface (an error and an empty output) instead of computing on each rank's piece alone, which
-differs from the one-process answer near every piece's border without saying so.
+"""Run by `mpiexec -np 2 pvbatch --symmetric` (ctest ParaView.Mpi.RefusedInsteadOfWrong): a run with
+more than one process must refuse every filter that does not run distributed yet (the mesh, the
+field sampler, the energy glyphs: an error and an empty output) instead of computing on each
+rank's piece alone, which differs from the one-process answer near every piece's border without
+saying so. (The projection and the classifier run distributed: test_mpi_distributed.py.)
 
 Prints "ok" lines and ends normally on success; exits 1 with the reason otherwise.
 usage: pvbatch --symmetric test_mpi_refused.py --plugin PointSetSurfaces.so
@@ -30,9 +31,9 @@ cloud.UpdatePipeline()
 if rank == 0 and cloud.GetDataInformation().GetNumberOfPoints() == 0:
     sys.exit("the cloud source gave no points on rank 0")
 refused = 0
-for name, proxy in (("projection", PointSetSurfaceProjection(Input=cloud)),
-                    ("classifier", PointSetSurfaceDomainClassifier(Input=cloud)),
-                    ("mesh", PointSetSurfaceMesh(Input=cloud))):
+for name, proxy in (("mesh", PointSetSurfaceMesh(Input=cloud)),
+                    ("sampler", PointSetSurfaceFieldSampler(Input=cloud, GenerateSamplingGrid=1)),
+                    ("glyphs", PointSetSurfaceEnergyGlyphs(Input=cloud))):
     proxy.UpdatePipeline()
     points = proxy.GetDataInformation().GetNumberOfPoints()
     if points != 0:

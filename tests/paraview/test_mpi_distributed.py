@@ -1,0 +1,227 @@
+"""Distributed projection and domain classification against the one-process run (ctest
+ParaView.Mpi.Distributed.<case>).
+
+    pvpython test_mpi_distributed.py --case NAME --np N --plugin PointSetSurfaces.so
+        --pvbatch pvbatch --mpiexec mpiexec --workdir DIR
+
+Writes a small noisy sphere (a few thousand points, seeded) as a .pvtp of pieces, runs
+mpi_distributed_worker.py once in one process (pvbatch) and once with `mpiexec --oversubscribe
+-np N pvbatch --symmetric`, then checks for both filters: no point lost or duplicated (count and
+GlobalPointIds = 0..n-1), every point array of the one-process output equal at each global id
+(integers identical, doubles bitwise, NaN = NaN), positions bitwise (else within max(1e-9 h,
+4 ulp), reported), and ScaleFactor (the automatic h) identical on every rank. Cases:
+  rank0     the whole cloud in one piece: read by rank 0 only
+  tiled     the cloud in N slabs along x, separate start points in N-1 pieces (one rank has none)
+            with NaN and Inf start points and NaN/Inf cloud points
+  emptyrank the cloud in N-1 slabs: one rank has no cloud point and no start point
+  offset    coordinates offset by 5e6 (where float coordinates or float cut boxes would fail)
+  empty     bad input: no cloud point on any rank; every rank must fail with the same error
+  zeroh     bad input: AutomaticScale off and h = 0; every rank must fail with the same error
+Exits 0 with "ok" lines, 1 with the reasons.
+"""
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter
+
+parser = argparse.ArgumentParser()
+parser.add_argument("--case", required=True)
+parser.add_argument("--np", type=int, required=True)
+parser.add_argument("--plugin", required=True)
+parser.add_argument("--pvbatch", required=True)
+parser.add_argument("--mpiexec", required=True)
+parser.add_argument("--workdir", required=True)
+parser.add_argument("--timeout", type=float, default=100)
+args = parser.parse_args()
+worker = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mpi_distributed_worker.py")
+problems = []
+
+
+def write_pieces(directory, name, xyz, piece_of, pieces):
+    """xyz as a .pvtp of `pieces` pieces (point i in piece piece_of[i]), with a StartId array."""
+    sources = []
+    for p in range(pieces):
+        sel = np.nonzero(piece_of == p)[0]
+        points = vtkPoints()
+        points.SetData(numpy_to_vtk(np.ascontiguousarray(xyz[sel]), deep=1))
+        poly = vtkPolyData()
+        poly.SetPoints(points)
+        ids = numpy_to_vtk(sel.astype(np.int64), deep=1)
+        ids.SetName("StartId")
+        poly.GetPointData().AddArray(ids)
+        writer = vtkXMLPolyDataWriter()
+        writer.SetInputData(poly)
+        writer.SetFileName(os.path.join(directory, "%s_%d.vtp" % (name, p)))
+        writer.Write()
+        sources.append('    <Piece Source="%s_%d.vtp"/>' % (name, p))
+    with open(os.path.join(directory, name + ".pvtp"), "w") as f:
+        f.write('<?xml version="1.0"?>\n<VTKFile type="PPolyData" version="1.0" byte_order="LittleEndian" '
+                'header_type="UInt64">\n  <PPolyData GhostLevel="0">\n'
+                '    <PPointData><PDataArray type="Int64" Name="StartId"/></PPointData>\n'
+                '    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>\n'
+                + "\n".join(sources) + "\n  </PPolyData>\n</VTKFile>\n")
+    return name + ".pvtp"
+
+
+def slabs(xyz, pieces):
+    """Piece of each point: `pieces` slabs of equal counts along x (NaN/Inf points in piece 0)."""
+    x = np.where(np.isfinite(xyz[:, 0]), xyz[:, 0], -np.inf)
+    rank = np.empty(len(x), dtype=np.int64)
+    rank[np.argsort(x, kind="stable")] = np.arange(len(x))
+    return rank * pieces // len(x)
+
+
+def make_case(directory):
+    rng = np.random.default_rng(16)
+    n = 2500
+    v = rng.normal(size=(n, 3))
+    xyz = v / np.linalg.norm(v, axis=1)[:, None] * (1 + 0.02 * rng.normal(size=(n, 1)))
+    case = {}
+    if args.case == "rank0":
+        case["cloud"] = write_pieces(directory, "cloud", xyz, np.zeros(n, dtype=np.int64), 1)
+    elif args.case == "tiled":
+        xyz[[7, 1500]] = [[np.nan, 0, 0], [0, np.inf, 0]]
+        case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
+        starts = 1.3 * rng.uniform(-1, 1, size=(600, 3))
+        starts[[3, 400]] = [[np.nan, 1, 1], [-np.inf, 0, 0]]
+        case["starts"] = write_pieces(directory, "starts", starts, slabs(starts, args.np - 1), args.np - 1)
+    elif args.case == "emptyrank":
+        case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np - 1), args.np - 1)
+    elif args.case == "offset":
+        xyz[[11]] = [[np.nan, np.nan, np.nan]]
+        xyz += 5e6
+        case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
+    elif args.case == "empty":
+        case["cloud"] = write_pieces(directory, "cloud", xyz[:0], np.zeros(0, dtype=np.int64), args.np)
+    elif args.case == "zeroh":
+        case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
+        case["surface"] = {"AutomaticScale": 0, "ScaleFactor": 0.0}
+    else:
+        sys.exit("unknown case %s" % args.case)
+    with open(os.path.join(directory, "case.json"), "w") as f:
+        json.dump(case, f)
+
+
+def run(command, name):
+    # pvpython is itself an MPI singleton: its OpenMPI/PMIx variables would make mpiexec's ranks
+    # join it instead of starting their own world.
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "OPAL_", "PRTE_"))}
+    env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1")
+    start = time.time()
+    try:
+        done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=args.timeout)
+    except subprocess.TimeoutExpired:
+        sys.exit("%s: no end within %g s (a hang?)" % (name, args.timeout))
+    print("ran  %-9s in %.1f s (exit %d)" % (name, time.time() - start, done.returncode), flush=True)
+    if done.returncode != 0:
+        sys.stdout.write(done.stdout[-3000:] + done.stderr[-3000:])
+        sys.exit("%s: exit status %d" % (name, done.returncode))
+    return done.stdout + done.stderr
+
+
+def read(path):
+    """The polydata in path, or an empty one when the worker wrote none (an empty output)."""
+    if not os.path.exists(path):
+        return vtkPolyData()
+    reader = vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader.GetOutput()
+
+
+def arrays_of(poly):
+    pd = poly.GetPointData()
+    out = {"Points": vtk_to_numpy(poly.GetPoints().GetData()) if poly.GetNumberOfPoints() else np.zeros((0, 3))}
+    for i in range(pd.GetNumberOfArrays()):
+        out[pd.GetArrayName(i)] = vtk_to_numpy(pd.GetArray(i))
+    return out
+
+
+def compare(directory, name):
+    serial = read(os.path.join(directory, "serial_%s_0.vtp" % name))
+    pieces = [read(os.path.join(directory, "parallel_%s_%d.vtp" % (name, r))) for r in range(args.np)]
+    n = serial.GetNumberOfPoints()
+    h = serial.GetFieldData().GetArray("ScaleFactor").GetValue(0)
+    for r, piece in enumerate(pieces):
+        if piece.GetNumberOfPoints() == 0:
+            continue
+        ph = piece.GetFieldData().GetArray("ScaleFactor").GetValue(0)
+        if ph != h:
+            problems.append("%s: rank %d used h = %r, one process %r" % (name, r, ph, h))
+    want = arrays_of(serial)
+    parts = [arrays_of(p) for p in pieces if p.GetNumberOfPoints() > 0]
+    got = {key: np.concatenate([p[key] for p in parts]) for key in parts[0]}
+    ids = got.get("GlobalPointIds")
+    if ids is None:
+        problems.append("%s: no GlobalPointIds in the distributed output" % name)
+        return
+    if len(ids) != n or not np.array_equal(np.sort(ids), np.arange(n)):
+        problems.append("%s: %d distributed points with %d distinct ids, one process %d points"
+                        % (name, len(ids), len(np.unique(ids)), n))
+        return
+    order = np.argsort(ids)
+    bitwise = True
+    for key, a in want.items():
+        if key not in got:
+            problems.append("%s: array %s missing from the distributed output" % (name, key))
+            continue
+        b = got[key][order]
+        if a.dtype.kind == "f":
+            same = np.array_equal(a.view(np.int64 if a.dtype == np.float64 else np.int32),
+                                  b.view(np.int64 if b.dtype == np.float64 else np.int32))
+            if not same:
+                bitwise = False
+                tol = np.maximum(1e-9 * h, 4 * np.spacing(np.abs(a)))
+                bad = ~((np.abs(a - b) <= tol) | (np.isnan(a) & np.isnan(b)))
+                if key != "Points" or bad.any():
+                    problems.append("%s: %s differs at %d values (largest %g)"
+                                    % (name, key, int(bad.sum()), float(np.nanmax(np.abs(a - b)))))
+        elif not np.array_equal(a, b):
+            problems.append("%s: %s differs at %d values" % (name, key, int((a != b).sum())))
+    print("ok   %-10s %d points, %d arrays, h = %.17g, %s" % (
+        name, n, len(want) - 1, h, "bitwise equal" if bitwise else "positions within tolerance"), flush=True)
+
+
+def main():
+    directory = os.path.join(args.workdir, args.case)
+    shutil.rmtree(directory, ignore_errors=True)
+    os.makedirs(directory)
+    make_case(directory)
+    common = [worker, "--plugin", args.plugin, "--case", directory]
+    serial_log = run([args.pvbatch] + common + ["--out", "serial"], "one process")
+    parallel_log = run([args.mpiexec, "--oversubscribe", "-np", str(args.np), args.pvbatch, "--symmetric"]
+                       + common + ["--out", "parallel"], "np %d" % args.np)
+    if args.case in ("empty", "zeroh"):
+        message = "the point cloud is empty" if args.case == "empty" else "invalid surface parameters"
+        for name in ("projection", "classifier"):
+            for r in range(args.np):
+                if read(os.path.join(directory, "parallel_%s_%d.vtp" % (name, r))).GetNumberOfPoints():
+                    problems.append("%s: rank %d has output on bad input" % (name, r))
+        expected = 2 * args.np  # each filter's error, once on every rank
+        if serial_log.count(message) != 2:
+            problems.append("one process: %d errors containing %r, expected 2" % (serial_log.count(message), message))
+        if parallel_log.count(message) != expected:
+            problems.append("np %d: %d errors containing %r, expected %d (one per filter and rank)"
+                            % (args.np, parallel_log.count(message), message, expected))
+        else:
+            print("ok   every rank failed with %r" % message)
+    else:
+        for name in ("projection", "classifier"):
+            compare(directory, name)
+    for p in problems:
+        print("FAIL:", p)
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
