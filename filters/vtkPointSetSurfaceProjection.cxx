@@ -192,13 +192,15 @@ int vtkPointSetSurfaceProjection::RequestData(
 
   vtkPoints* startPoints = starts->GetPoints();
   const vtkIdType n = starts->GetNumberOfPoints();
-  // Neighbours are visited together so that they share cached neighbourhoods. The cloud's own
-  // points come in that order from the index at no cost; other start points are sorted.
+  // Neighbours are visited together so that they share cached neighbourhoods. The indexed
+  // cloud's own points come in that order from the index at no cost (in a distributed run the
+  // index holds the gathered cloud, not this rank's piece); other start points are sorted.
+  const bool startsAreIndexed = starts == cloud && !this->GatheredCloud &&
+    static_cast<vtkIdType>(index.size() + index.skippedCount()) == n;
   std::vector<std::uint32_t> order;
   try
   {
-    order = starts == cloud && static_cast<vtkIdType>(index.size() + index.skippedCount()) == n
-      ? index.visitingOrder()
+    order = startsAreIndexed ? index.visitingOrder()
       : pss::spatialOrder(pss_vtk::ToVectors(startPoints));
   }
   catch (const std::exception& e)
