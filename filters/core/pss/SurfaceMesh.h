@@ -174,10 +174,10 @@ private:
   bool closesFlat(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& vertexNormals) const;
   /// The simple border loops of @p mesh of at most maxHoleEdges edges, each in its triangles' winding.
   std::vector<std::vector<std::uint32_t>> smallHoles(const SurfaceMesh& mesh) const;
-  /// The unfolded triangulation of least area of @p hole's own vertices whose new edges are not in
-  /// @p edges (sorted (lower, higher) vertex pairs), or none.
+  /// The triangulation of least area of @p hole's own vertices whose new edges are not in @p edges
+  /// (sorted (lower, higher) vertex pairs), or none; every triangle unfolded when @p unfolded.
   std::vector<std::array<std::uint32_t, 3>> triangulateHole(const std::vector<std::uint32_t>& hole,
-    const SurfaceMesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) const;
+    const SurfaceMesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges, bool unfolded) const;
   void closeSmallHoles(SurfaceMesh& mesh, Workspace& ws);
 
   const SurfaceDefinition& Surface;
