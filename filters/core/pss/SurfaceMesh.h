@@ -38,7 +38,10 @@
  *    the cloud has a point within maxDistance of the centre, by the least-area triangulation of the
  *    hole's own vertices whose triangles do not fold. Such holes are where a seam of the
  *    orientation, a fold or one dropped crossing left a few cells out, not where the domain ends:
- *    the scan has data there, so the mesh covers it.
+ *    the scan has data there, so the mesh covers it. In the largest piece such a hole is closed
+ *    even when every closing folds (by the fan, else the least-area triangulation): its border was
+ *    turned inside out by the projection or twisted by a pleat of the contour, and any closing
+ *    lies nearer the surface than the hole; a smaller piece's outline is left alone.
  * Every stage is deterministic: the result does not depend on the number of threads.
  */
 #pragma once
