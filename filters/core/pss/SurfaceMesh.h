@@ -70,7 +70,7 @@ struct MeshOptions
   double maxFoldAngle = 60.0;   ///< degrees: cells whose own normal is farther off their vertices' n are dropped
   /// Holes bounded by at most this many edges are closed where their centre projects InDomain
   /// (3D; fewer than 3 turns closing off).
-  std::size_t maxHoleEdges = 50;
+  std::size_t maxHoleEdges = 100;
   /// 3D: connected pieces of a smaller area, in units of h^2, are removed. 0 (the default) keeps
   /// every piece: on the bunny the islands are bits of real surface inside holes of the main piece.
   double minPieceArea = 0.0;
