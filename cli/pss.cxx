@@ -590,7 +590,7 @@ int Mesh(const std::vector<std::string>& args)
     [&](const std::string& v) { mesher->SetMaxSeamAngle(pss_cli::ToDouble("max-seam-angle", v)); });
   t.Value("max-fold-angle", "DEG", "drop triangles whose normal is farther off their vertices' n (default 60)",
     [&](const std::string& v) { mesher->SetMaxFoldAngle(pss_cli::ToDouble("max-fold-angle", v)); });
-  t.Value("max-hole-edges", "N", "3D: close holes of at most N edges unless the scan has no data at their centre (default 20)",
+  t.Value("max-hole-edges", "N", "3D: close holes of at most N edges unless the scan has no data at their centre (default 100)",
     [&](const std::string& v) { mesher->SetMaxHoleEdges(pss_cli::ToInt("max-hole-edges", v)); });
   t.Value("min-piece-area", "A", "3D: remove pieces smaller than A h^2 (default 0: keep all)",
     [&](const std::string& v) { mesher->SetMinPieceArea(pss_cli::ToDouble("min-piece-area", v)); });

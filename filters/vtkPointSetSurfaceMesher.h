@@ -198,7 +198,7 @@ protected:
   double MaxVertexTravel = 2.0;
   double MaxSeamAngle = 80.0;
   double MaxFoldAngle = 60.0;
-  int MaxHoleEdges = 20;
+  int MaxHoleEdges = 100;
   double MinPieceArea = 0.0;
   double CoveredPieceArea = 10.0;
   vtkIdType MaximumNumberOfBandCells = vtkIdType(1) << 24;

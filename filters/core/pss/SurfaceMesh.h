@@ -38,7 +38,10 @@
  *    the cloud has a point within maxDistance of the centre, by the least-area triangulation of the
  *    hole's own vertices whose triangles do not fold. Such holes are where a seam of the
  *    orientation, a fold or one dropped crossing left a few cells out, not where the domain ends:
- *    the scan has data there, so the mesh covers it.
+ *    the scan has data there, so the mesh covers it. In the largest piece such a hole is closed
+ *    even when every closing folds (by the fan, else the least-area triangulation): its border was
+ *    turned inside out by the projection or twisted by a pleat of the contour, and any closing
+ *    lies nearer the surface than the hole; a smaller piece's outline is left alone.
  * Every stage is deterministic: the result does not depend on the number of threads.
  */
 #pragma once
@@ -67,7 +70,7 @@ struct MeshOptions
   double maxFoldAngle = 60.0;   ///< degrees: cells whose own normal is farther off their vertices' n are dropped
   /// Holes bounded by at most this many edges are closed where their centre projects InDomain
   /// (3D; fewer than 3 turns closing off).
-  std::size_t maxHoleEdges = 20;
+  std::size_t maxHoleEdges = 100;
   /// 3D: connected pieces of a smaller area, in units of h^2, are removed. 0 (the default) keeps
   /// every piece: on the bunny the islands are bits of real surface inside holes of the main piece.
   double minPieceArea = 0.0;
@@ -174,10 +177,10 @@ private:
   bool closesFlat(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& vertexNormals) const;
   /// The simple border loops of @p mesh of at most maxHoleEdges edges, each in its triangles' winding.
   std::vector<std::vector<std::uint32_t>> smallHoles(const SurfaceMesh& mesh) const;
-  /// The unfolded triangulation of least area of @p hole's own vertices whose new edges are not in
-  /// @p edges (sorted (lower, higher) vertex pairs), or none.
+  /// The triangulation of least area of @p hole's own vertices whose new edges are not in @p edges
+  /// (sorted (lower, higher) vertex pairs), or none; every triangle unfolded when @p unfolded.
   std::vector<std::array<std::uint32_t, 3>> triangulateHole(const std::vector<std::uint32_t>& hole,
-    const SurfaceMesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) const;
+    const SurfaceMesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges, bool unfolded) const;
   void closeSmallHoles(SurfaceMesh& mesh, Workspace& ws);
 
   const SurfaceDefinition& Surface;

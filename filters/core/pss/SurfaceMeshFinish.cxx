@@ -517,7 +517,7 @@ std::vector<std::vector<std::uint32_t>> SurfaceMesher::smallHoles(const SurfaceM
 }
 
 std::vector<std::array<std::uint32_t, 3>> SurfaceMesher::triangulateHole(const std::vector<std::uint32_t>& hole,
-  const SurfaceMesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) const
+  const SurfaceMesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges, bool unfolded) const
 {
   // The triangulation of the hole's own vertices of least area whose every triangle is unfolded
   // (dynamic programming over the polygon's sub-chains, as in Liepa's hole filling), and whose
@@ -561,7 +561,7 @@ std::vector<std::array<std::uint32_t, 3>> SurfaceMesher::triangulateHole(const s
         const Vec3& a = mesh.points[hole[j]];
         const Vec3& b = mesh.points[hole[m]];
         const Vec3& c = mesh.points[hole[i]];
-        if (!closesFlat(a, b, c, mesh.normals[hole[i]] + mesh.normals[hole[m]] + mesh.normals[hole[j]]))
+        if (unfolded && !closesFlat(a, b, c, mesh.normals[hole[i]] + mesh.normals[hole[m]] + mesh.normals[hole[j]]))
         {
           continue;
         }
@@ -629,6 +629,9 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   const double h = Surface.h();
+  Pieces pieces = piecesOf(mesh.triangles, mesh.points);
+  const auto largest = static_cast<std::size_t>(
+    std::max_element(pieces.measure.begin(), pieces.measure.end()) - pieces.measure.begin());
   for (const std::vector<std::uint32_t>& hole : holes)
   {
     const std::size_t k = hole.size();
@@ -673,33 +676,51 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
     const bool flat = !fill.empty() && std::all_of(fill.begin(), fill.end(), [&](const std::array<std::uint32_t, 3>& t) {
       return closesFlat(at(t[0]), at(t[1]), at(t[2]), normalAt(t[0]) + normalAt(t[1]) + normalAt(t[2]));
     });
-    if (!flat && k > 3)
+    if (!flat)
     {
-      // No fan: its apex is outside the domain or a triangle of it folds (a flap over a seam of
-      // the orientation). The hole is still closed from its own vertices when the scan has data
-      // at its centre (a cloud point within MaxDistance): only a hole over a gap of the scan, where
-      // the surface is not defined, must stay open.
+      // No flat fan: its apex is outside the domain or a triangle of it folds (a flap over a seam
+      // of the orientation). The hole is still closed when the scan has data at its centre (a
+      // cloud point within MaxDistance): only a hole over a gap of the scan, where the surface is
+      // not defined, must stay open. First from its own vertices without a fold; then, in the
+      // largest piece, with folds: there such holes are where the projection turned a border
+      // inside out (the triangles around it overlap it by a fraction of a cell) or a pleat of the
+      // contour twisted it, and any closing lies nearer the surface than the hole. A smaller
+      // piece's outline walks the wrong way round too, but closing it would make a closed lens.
       const bool scanHasData = Surface.index().nearest(centre).second <=
         Options.domain.maxDistance * h * Options.domain.maxDistance * h;
+      const bool anyFold = scanHasData && pieces.sets.find(hole[0]) == largest;
+      std::vector<std::array<std::uint32_t, 3>> folding;
+      if (anyFold)
+      {
+        folding.swap(fill);
+      }
+      fill.clear();
       fan = false;
-      fill = scanHasData ? triangulateHole(hole, mesh, edges) : std::vector<std::array<std::uint32_t, 3>>{};
+      if (scanHasData && k > 3)
+      {
+        fill = triangulateHole(hole, mesh, edges, true);
+      }
+      if (fill.empty() && anyFold)
+      {
+        fan = k > 3 && !folding.empty();
+        fill = fan || k == 3 ? folding : triangulateHole(hole, mesh, edges, false);
+      }
       if (fill.empty())
       {
         continue;
       }
-      for (const auto& t : fill)
+      if (!fan)
       {
-        for (int i = 0; i < 3; ++i)
+        for (const auto& t : fill)
         {
-          edges.emplace_back(std::min(t[i], t[(i + 1) % 3]), std::max(t[i], t[(i + 1) % 3]));
+          for (int i = 0; i < 3; ++i)
+          {
+            edges.emplace_back(std::min(t[i], t[(i + 1) % 3]), std::max(t[i], t[(i + 1) % 3]));
+          }
         }
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
       }
-      std::sort(edges.begin(), edges.end());
-      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-    }
-    else if (!flat)
-    {
-      continue;
     }
     if (fan)
     {
