@@ -852,8 +852,8 @@ void ForEachInteger(File& f, const Array& a, const Expected& expected,
 
 std::vector<long long> Integers(File& f, const Array& a, const Expected& expected)
 {
+  // Not reserved: expected.values is only trusted once ForEachInteger has checked the size header.
   std::vector<long long> values;
-  values.reserve(expected.values);
   ForEachInteger(f, a, expected, [&](const long long* v, std::size_t n) { values.insert(values.end(), v, v + n); });
   return values;
 }
