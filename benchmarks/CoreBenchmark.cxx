@@ -342,7 +342,8 @@ bool RunRow(const char* name, const std::function<RowResult()>& body)
 }
 
 #ifdef PSS_BENCH_PSS
-// Runs @p command through the shell; returns its standard error, or nothing when it failed.
+// Runs @p command through the shell, appending its standard error to @p stderrText; true when it
+// exited with status 0.
 bool RunCommand(const std::string& command, std::string& stderrText)
 {
   std::FILE* pipe = popen((command + " 2>&1 >/dev/null").c_str(), "r");
