@@ -75,8 +75,7 @@ struct StandardArrays
   explicit StandardArrays(vtkIdType n)
     : N(n)
   {
-    this->Points->SetDataTypeToDouble();
-    this->Points->SetNumberOfPoints(n);
+    this->Points->SetData(this->Coordinates);
   }
 
   // Point i's tuples: called from several threads, each i once.
@@ -87,8 +86,7 @@ struct StandardArrays
     const pss::Vec3 nrm = valid ? orientation.apply(r.direction.n, r.point) : pss::Vec3::Zero();
     const pss::Vec3 d =
       valid ? pss::Vec3(r.point - index.restrict(pss::Vec3(start[0], start[1], start[2]))) : pss::Vec3::Zero();
-    double* point = vtkDoubleArray::FastDownCast(this->Points->GetData())->GetPointer(3 * i);
-    std::copy(r.point.data(), r.point.data() + 3, point);
+    std::copy(r.point.data(), r.point.data() + 3, this->Coordinates->GetPointer(3 * i));
     std::copy(nrm.data(), nrm.data() + 3, this->Normal->GetPointer(3 * i));
     this->Energy->GetPointer(i)[0] = r.energy;
     std::copy(d.data(), d.data() + 3, this->Displacement->GetPointer(3 * i));
@@ -114,7 +112,8 @@ struct StandardArrays
   vtkIdType Size() const { return this->N; }
 
   const vtkIdType N; // declared first: the arrays below are sized from it
-  vtkNew<vtkPoints> Points;
+  vtkSmartPointer<vtkDoubleArray> Coordinates = pss_vtk::NewArray<vtkDoubleArray>("Points", N, 3);
+  vtkNew<vtkPoints> Points; // holds Coordinates
   vtkSmartPointer<vtkDoubleArray> Normal = pss_vtk::NewArray<vtkDoubleArray>("Normal", N, 3);
   vtkSmartPointer<vtkDoubleArray> Energy = pss_vtk::NewArray<vtkDoubleArray>("Energy", N, 1);
   vtkSmartPointer<vtkDoubleArray> Displacement = pss_vtk::NewArray<vtkDoubleArray>("Displacement", N, 3);
