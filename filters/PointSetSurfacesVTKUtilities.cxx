@@ -11,6 +11,7 @@
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkMultiProcessController.h"
+#include "vtkPointData.h"
 #include "vtkPointSetSurface.h"
 #include "vtkPolyData.h"
 
@@ -107,8 +108,8 @@ bool PrepareSurface(
   // A filter that does not gather the cloud would take each rank's piece as the whole cloud (its
   // own h, centroid and neighbours) and silently differ from a one-process run near every piece's
   // border: refuse instead.
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  if (!gathered && controller && controller->GetNumberOfProcesses() > 1)
+  vtkMultiProcessController* controller = MultiProcessController();
+  if (!gathered && controller)
   {
     vtkErrorWithObjectMacro(algorithm, << "runs in one process only (it does not run distributed yet), and this "
                                           "run has "
@@ -129,6 +130,26 @@ bool PrepareSurface(
                                          << " cloud point(s) with NaN or infinite coordinates were left out of the surface");
   }
   return true;
+}
+
+vtkMultiProcessController* MultiProcessController()
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  return controller && controller->GetNumberOfProcesses() > 1 ? controller : nullptr;
+}
+
+bool PrepareDistributedSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
+  vtkMultiProcessController* controller, vtkPointSet* cloud, const char* what, vtkSmartPointer<vtkPolyData>& gathered)
+{
+  if (!controller)
+  {
+    gathered = nullptr;
+    return PrepareSurface(algorithm, surface, cloud, what);
+  }
+  // The whole cloud on every rank makes h, centroid, bounds and every neighbourhood those of the
+  // one-process run by construction, whatever the split.
+  gathered = GatherCloud(algorithm, controller, cloud);
+  return gathered && PrepareSurface(algorithm, surface, gathered, what, true);
 }
 
 vtkSmartPointer<vtkPolyData> GatherCloud(
@@ -170,6 +191,20 @@ vtkSmartPointer<vtkPolyData> GatherCloud(
   auto whole = vtkSmartPointer<vtkPolyData>::New();
   whole->SetPoints(points);
   return whole;
+}
+
+void AddGlobalPointIds(vtkPointData* pd, vtkIdType first, vtkIdType n)
+{
+  if (pd->GetGlobalIds())
+  {
+    return;
+  }
+  auto ids = NewArray<vtkIdTypeArray>("GlobalPointIds", n, 1);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    ids->SetValue(i, first + i);
+  }
+  pd->SetGlobalIds(ids);
 }
 
 vtkIdType GlobalOffset(vtkMultiProcessController* controller, vtkIdType count)

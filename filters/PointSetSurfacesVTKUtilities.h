@@ -21,6 +21,7 @@ class vtkAlgorithm;
 class vtkDataObject;
 class vtkMultiProcessController;
 class vtkObject;
+class vtkPointData;
 class vtkPointSet;
 class vtkPointSetSurface;
 class vtkPolyData;
@@ -66,6 +67,19 @@ void PrintSurface(ostream& os, vtkIndent indent, vtkPointSetSurface* surface);
 bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPointSet* cloud, const char* what = "",
   bool gathered = false);
 
+/// The global vtkMultiProcessController when this process is one of several (an MPI run of more
+/// than one process), else nullptr.
+vtkMultiProcessController* MultiProcessController();
+
+/**
+ * PrepareSurface for a filter that runs distributed. With @p controller (an MPI run) it is
+ * collective: every rank's @p cloud is gathered into @p gathered (GatherCloud) and the surface
+ * prepared on that, so every rank gets the one-process surface or the same error. Without, the
+ * surface is prepared on @p cloud and @p gathered released.
+ */
+bool PrepareDistributedSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
+  vtkMultiProcessController* controller, vtkPointSet* cloud, const char* what, vtkSmartPointer<vtkPolyData>& gathered);
+
 /**
  * Collective over @p controller: every rank's @p cloud points (nullptr counts as none) as one
  * double-precision point set on every rank, ranks in order, each rank's points in their order,
@@ -76,6 +90,10 @@ bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPoi
  */
 vtkSmartPointer<vtkPolyData> GatherCloud(
   vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud);
+
+/// Unless @p pd has global ids already, gives its @p n tuples the global ids first, first + 1, ...
+/// as `GlobalPointIds` (the distributed filters' outputs, gathered, then match one process's).
+void AddGlobalPointIds(vtkPointData* pd, vtkIdType first, vtkIdType n);
 
 /// Collective over @p controller: the number of items on the ranks before this one (each rank
 /// has @p count), i.e. the global id of this rank's first item when pieces are concatenated.

@@ -5,7 +5,6 @@
 #include "vtkPointSetSurface.h"
 
 #include "vtkInformation.h"
-#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 
@@ -43,23 +42,13 @@ int vtkPointSetSurfaceAlgorithm::FillInputPortInformation(int port, vtkInformati
 
 vtkMultiProcessController* vtkPointSetSurfaceAlgorithm::DistributedController() const
 {
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  return this->SupportsDistributedRun() && controller && controller->GetNumberOfProcesses() > 1 ? controller
-                                                                                                 : nullptr;
+  return this->SupportsDistributedRun() ? pss_vtk::MultiProcessController() : nullptr;
 }
 
 bool vtkPointSetSurfaceAlgorithm::PrepareSurface(vtkPointSet* cloud, const char* what)
 {
-  vtkMultiProcessController* controller = this->DistributedController();
-  if (!controller)
-  {
-    this->GatheredCloud = nullptr;
-    return pss_vtk::PrepareSurface(this, this->Surface, cloud, what);
-  }
-  // The whole cloud on every rank makes h, centroid, bounds and every neighbourhood those of the
-  // one-process run by construction, whatever the split.
-  this->GatheredCloud = pss_vtk::GatherCloud(this, controller, cloud);
-  return this->GatheredCloud && pss_vtk::PrepareSurface(this, this->Surface, this->GatheredCloud, what, true);
+  return pss_vtk::PrepareDistributedSurface(
+    this, this->Surface, this->DistributedController(), cloud, what, this->GatheredCloud);
 }
 
 void vtkPointSetSurfaceAlgorithm::PrintSelf(ostream& os, vtkIndent indent)

@@ -7,11 +7,13 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
@@ -120,15 +122,30 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   {
     return 0;
   }
-  if (!samples || samples->GetNumberOfPoints() == 0)
+  // In a distributed run each rank plots its own samples (its piece of the sample points, or of
+  // the cloud) on the gathered cloud; sample ids and the global scale are those of one process.
+  vtkMultiProcessController* controller = this->DistributedController();
+  const vtkIdType sampleCount = samples ? samples->GetNumberOfPoints() : 0;
+  const vtkIdType firstSampleId = controller ? pss_vtk::GlobalOffset(controller, sampleCount) : 0;
+  const bool perGlyph = this->ScaleMode == SCALE_PER_GLYPH;
+  // Collective in a distributed SCALE_GLOBAL run, so every rank calls it once, samples or not.
+  auto largestOfAllRanks = [&](double largest) {
+    double all = largest;
+    if (controller && !perGlyph)
+    {
+      controller->AllReduce(&largest, &all, 1, vtkCommunicator::MAX_OP);
+    }
+    return all;
+  };
+  if (sampleCount == 0)
   {
+    largestOfAllRanks(0.0);
     return 1; // nothing to plot: empty outputs
   }
 
   const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
   const pss::PointIndex& index = *this->Surface->GetIndex();
   const double h = this->Surface->GetEffectiveScale();
-  const bool perGlyph = this->ScaleMode == SCALE_PER_GLYPH;
   const DirectionSet set =
     surface.dimension() == 2 ? CircleDirections(this->Resolution) : SphereDirections(this->Resolution);
   const std::vector<pss::Vec3>& dirs = set.directions;
@@ -143,7 +160,7 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
     if (pss::isFinite(all[i]))
     {
       xs.push_back(index.restrict(all[i]));
-      sampleIds.push_back(static_cast<vtkIdType>(i));
+      sampleIds.push_back(firstSampleId + static_cast<vtkIdType>(i));
     }
   }
   vtkIdType dropped = static_cast<vtkIdType>(all.size() - xs.size());
@@ -154,13 +171,11 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   std::vector<pss::Direction> normals(m);
   std::vector<double> value(m * nDirs, 0.0);
   std::vector<double> logScale(perGlyph ? m * nDirs : 0, 0.0);
-  if (!pss_vtk::ParallelFor(
-        this, static_cast<vtkIdType>(m),
-        [&](vtkIdType s, pss::Workspace& ws) { normals[s] = surface.direction(xs[s], ws); }, 0.0, 0.1))
-  {
-    return 1; // aborted: leave the outputs empty
-  }
-  if (!pss_vtk::ParallelFor(this, static_cast<vtkIdType>(m * nDirs),
+  const bool completed = pss_vtk::ParallelFor(
+                           this, static_cast<vtkIdType>(m),
+                           [&](vtkIdType s, pss::Workspace& ws) { normals[s] = surface.direction(xs[s], ws); }, 0.0,
+                           0.1) &&
+    pss_vtk::ParallelFor(this, static_cast<vtkIdType>(m * nDirs),
         [&](vtkIdType k, pss::Workspace& ws) {
           const std::size_t s = static_cast<std::size_t>(k) / nDirs;
           const std::size_t d = static_cast<std::size_t>(k) % nDirs;
@@ -175,9 +190,11 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
             value[k] = surface.energy(xs[s], dirs[d], ws);
           }
         },
-        0.1, 0.9))
+        0.1, 0.9);
+  if (!completed)
   {
-    return 1;
+    largestOfAllRanks(0.0);
+    return 1; // aborted: leave the outputs empty
   }
 
   // Radius of every glyph point: c e(x, a) (global) or the per-glyph normalization.
@@ -228,6 +245,7 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
       }
     }
   }
+  largest = largestOfAllRanks(largest);
   if (!perGlyph)
   {
     this->GlyphScale = largest > 0.0 && std::isfinite(largest) ? this->GlyphSize * h / largest : 0.0;

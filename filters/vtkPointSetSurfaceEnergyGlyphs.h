@@ -42,6 +42,11 @@
  * counts them); an empty set of samples gives empty outputs; an empty cloud is an error. For a 2D
  * cloud every sample is taken in the xy-plane (z = 0), as by every query of the core.
  *
+ * Distributed runs (MPI, a global controller of several processes): every rank plots its own
+ * samples (its piece of input 1, or of the cloud) on the cloud gathered from every rank, with
+ * SampleId counted over the ranks' pieces in rank order and SCALE_GLOBAL's c taken over every
+ * rank's energies, so that the ranks' outputs together are the one-process output.
+ *
  * @sa vtkPointSetSurface vtkPointSetSurfaceProjection
  */
 #ifndef vtkPointSetSurfaceEnergyGlyphs_h
@@ -107,6 +112,9 @@ protected:
   ~vtkPointSetSurfaceEnergyGlyphs() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// The glyphs give the one-process result in a distributed run (see the class description).
+  bool SupportsDistributedRun() const override { return true; }
 
   int Resolution = 72;
   double GlyphSize = 1.0;

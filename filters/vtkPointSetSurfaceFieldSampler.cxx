@@ -13,9 +13,11 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
+#include "vtkPolyData.h"
 #include "vtkPoints.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
@@ -42,6 +44,23 @@ constexpr std::uint64_t kMaxOutputBytes = std::uint64_t(4) << 30;
 // Normal (3 doubles), Energy, Delta, ImplicitG, Stability (doubles), ExtremumType (int), Valid
 // (byte), DomainLabel (int).
 constexpr std::uint64_t kBytesPerSample = 3 * 8 + 4 * 8 + 4 + 1 + 4;
+}
+
+namespace
+{
+// Asks the producer on @p info for piece @p piece of @p pieces, without ghost levels (a structured
+// producer for its whole extent, which a piece request does not translate).
+void RequestPiece(vtkInformation* info, int piece, int pieces)
+{
+  info->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), piece);
+  info->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), pieces);
+  info->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  if (info->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+  {
+    info->Set(
+      vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+  }
+}
 }
 
 vtkPointSetSurfaceFieldSampler::vtkPointSetSurfaceFieldSampler()
@@ -231,7 +250,9 @@ int vtkPointSetSurfaceFieldSampler::RequestInformation(
   // there; RequestData sets the definitive ones from the cloud it samples.
   double origin[3] = { 0.0, 0.0, 0.0 };
   double spacing[3] = { 1.0, 1.0, 1.0 };
-  vtkPointSet* cloud = vtkPointSet::GetData(inputVector[1], 0);
+  // In a distributed run this rank's piece would give a provisional geometry of its own (and an
+  // index built for nothing): the one of the gathered cloud comes in RequestData.
+  vtkPointSet* cloud = pss_vtk::MultiProcessController() ? nullptr : vtkPointSet::GetData(inputVector[1], 0);
   if (cloud && cloud->GetNumberOfPoints() > 0 && this->Surface && this->Surface->Prepare(cloud))
   {
     double o[3], s[3];
@@ -249,31 +270,21 @@ int vtkPointSetSurfaceFieldSampler::RequestInformation(
 int vtkPointSetSurfaceFieldSampler::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
-  // The whole cloud, always: every sample may depend on any cloud point.
+  // The whole cloud, always: every sample may depend on any cloud point. One process reads all
+  // of it; in a distributed run each rank reads its piece and RequestData gathers the pieces.
+  vtkMultiProcessController* controller = pss_vtk::MultiProcessController();
+  const int piece = controller ? controller->GetLocalProcessId() : 0;
+  const int pieces = controller ? controller->GetNumberOfProcesses() : 1;
   if (vtkInformation* sourceInfo = inputVector[1]->GetInformationObject(0))
   {
-    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-    sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-    if (sourceInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-    {
-      sourceInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-        sourceInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
-    }
+    RequestPiece(sourceInfo, piece, pieces);
   }
   // With the generated grid, input 0 (if connected) is ignored: ask for as little as possible
-  // in a form any producer accepts, i.e. its first piece, not our image extent.
+  // in a form any producer accepts, i.e. a piece, not our image extent.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   if (this->GenerateSamplingGrid && inInfo)
   {
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-    if (inInfo->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-    {
-      inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-        inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
-    }
+    RequestPiece(inInfo, piece, pieces);
   }
   return 1;
 }
@@ -330,10 +341,28 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
     vtkErrorMacro(<< "no dataset to sample: connect input 0 or turn GenerateSamplingGrid on");
     return 0;
   }
-  if (!pss_vtk::PrepareSurface(this, this->Surface, cloud, " from the source"))
+  vtkMultiProcessController* controller = this->SupportsDistributedRun() ? pss_vtk::MultiProcessController() : nullptr;
+  // Refused on every rank alike, before anything collective: no rank is left waiting.
+  if (controller && this->OrientationMode == PROPAGATE)
+  {
+    vtkErrorMacro(<< "OrientationMode PROPAGATE needs every sample on one process, and this run has "
+                  << controller->GetNumberOfProcesses()
+                  << " (MPI): use AWAY_FROM_CENTROID or ALONG_DIRECTION, or run in one process");
+    return 0;
+  }
+  if (!pss_vtk::PrepareDistributedSurface(
+        this, this->Surface, controller, cloud, " from the source", this->GatheredCloud))
   {
     return 0;
   }
+  if (this->GatheredCloud)
+  {
+    cloud = this->GatheredCloud;
+  }
+  // Collective, so taken before any rank may stop: global ids of this rank's probe points.
+  const vtkIdType firstGlobalId = controller && !this->GenerateSamplingGrid
+    ? pss_vtk::GlobalOffset(controller, input ? input->GetNumberOfPoints() : 0)
+    : 0;
 
   const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
   pss::Orientation orientation;
@@ -466,6 +495,10 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
   // arrays, which are passed through.
   outPD->SetActiveVectors(normal->GetName());
   outPD->SetActiveScalars(g->GetName());
+  if (controller && !this->GenerateSamplingGrid)
+  {
+    pss_vtk::AddGlobalPointIds(outPD, firstGlobalId, n);
+  }
   return 1;
 }
 

@@ -93,6 +93,15 @@
  * output, and differ only in where those points come from (SetUpSamplingGrid or a copy of input
  * 0). A second class would repeat every setting.
  *
+ * @par Distributed runs.
+ * Under MPI (pvbatch --symmetric, pvserver: a global vtkMultiProcessController with more than one
+ * process) every rank asks for its own piece of the cloud, the pieces are gathered on every rank
+ * (as vtkPointSetSurfaceProjection does), and each rank samples its own part: its piece of input 0,
+ * or the part of the grid's extent the pipeline requests from it. Together the ranks' outputs are
+ * the one-process output, bitwise; probe outputs carry `GlobalPointIds` (input 0's order, rank by
+ * rank) unless input 0 has global ids. PROPAGATE needs the whole set of samples on one rank and is
+ * refused with an error on every rank; use AWAY_FROM_CENTROID or ALONG_DIRECTION there.
+ *
  * Errors (vtkErrorMacro, the update fails, no output): empty cloud or cloud without a finite
  * point, h <= 0 (AutomaticScale off and ScaleFactor <= 0), an invalid reference direction or
  * point, no input 0 without GenerateSamplingGrid, an absurd grid. Cloud points with NaN or
@@ -109,10 +118,12 @@
 
 #include "PointSetSurfacesFiltersModule.h" // for export macro
 #include "vtkDataSetAlgorithm.h"
+#include "vtkSmartPointer.h" // for vtkSmartPointer
 
 class vtkImageData;
 class vtkPointSet;
 class vtkPointSetSurface;
+class vtkPolyData;
 
 class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceFieldSampler : public vtkDataSetAlgorithm
 {
@@ -232,7 +243,12 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /// Always true: see "Distributed runs" above (also read by the plugin's XML test).
+  bool SupportsDistributedRun() const { return true; }
+
   vtkPointSetSurface* Surface = nullptr;
+  /// Every rank's cloud gathered by the last distributed update: the prepared surface refers to it.
+  vtkSmartPointer<vtkPolyData> GatheredCloud;
   int OrientationMode = AWAY_FROM_CENTROID;
   double ReferencePoint[3] = { 0.0, 0.0, 0.0 };
   double ReferenceDirection[3] = { 0.0, 0.0, 1.0 };

@@ -246,14 +246,9 @@ int vtkPointSetSurfaceProjection::RequestData(
     output->Initialize();
     return 0;
   }
-  if (controller && !outPD->GetGlobalIds())
+  if (controller)
   {
-    auto ids = pss_vtk::NewArray<vtkIdTypeArray>("GlobalPointIds", n, 1);
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      ids->SetValue(i, firstGlobalId + i);
-    }
-    outPD->SetGlobalIds(ids);
+    pss_vtk::AddGlobalPointIds(outPD, firstGlobalId, n);
   }
   if (this->GenerateProjectionLines)
   {

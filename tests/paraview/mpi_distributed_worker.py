@@ -4,9 +4,11 @@
     mpiexec -np N pvbatch --symmetric mpi_distributed_worker.py ... (the same arguments)
 
 Reads DIR/case.json (the cloud .pvtp, optional start points .pvtp, surface settings), applies the
-projection and the domain classifier, and writes each rank's own output of each filter to
-DIR/NAME_<filter>_<rank>.vtp (double coordinates, binary: bit-exact; no file for an empty
-output). Ends normally (pvbatch then finalizes MPI on every rank); the driver judges the files
+projection, the domain classifier, the field sampler (probing the start points, or the cloud) and
+the energy glyphs (at the start points, or the cloud), and writes each rank's own output of each
+filter to DIR/NAME_<filter>_<rank>.vtp (double coordinates, binary: bit-exact; no file for an
+empty output; the glyphs' two outputs as `glyphs` and `fits`); and the sampler's own grid, each
+rank's part of it, to DIR/NAME_grid_<rank>.vti. Ends normally (pvbatch then finalizes MPI on every rank); the driver judges the files
 and the error messages.
 """
 import argparse
@@ -15,7 +17,7 @@ import os
 
 import paraview.simple as pvs
 from paraview import servermanager
-from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+from vtkmodules.vtkIOXML import vtkXMLImageDataWriter, vtkXMLPolyDataWriter
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--plugin", required=True)
@@ -33,15 +35,32 @@ cloud = pvs.OpenDataFile(os.path.join(args.case, case["cloud"]))
 inputs = {"Input": cloud}
 if case.get("starts"):
     inputs["StartPoints"] = pvs.OpenDataFile(os.path.join(args.case, case["starts"]))
-for name, make in (("projection", PointSetSurfaceProjection), ("classifier", PointSetSurfaceDomainClassifier)):
-    proxy = make(**inputs)
-    for key, value in case.get("surface", {}).items():
+surface = case.get("surface", {})
+
+
+def sampler(**kwargs):
+    return PointSetSurfaceFieldSampler(Input=cloud, ComputeDomainLabels=1, **kwargs)
+
+
+filters = (
+    ("projection", lambda: PointSetSurfaceProjection(**inputs)),
+    ("classifier", lambda: PointSetSurfaceDomainClassifier(**inputs)),
+    ("sampler", lambda: sampler(Probe=inputs.get("StartPoints", cloud))),
+    ("grid", lambda: sampler(GenerateSamplingGrid=1, SampleDimensions=[13, 11, 9])),
+    ("glyphs", lambda: PointSetSurfaceEnergyGlyphs(Input=cloud, SamplePoints=inputs.get("StartPoints", cloud),
+                                                   Resolution=8)),
+)
+for name, make in filters:
+    proxy = make()
+    for key, value in surface.items():
         setattr(proxy, key, value)
     proxy.UpdatePipeline()
-    output = proxy.GetClientSideObject().GetOutputDataObject(0)
-    if output.GetNumberOfPoints() == 0:
-        continue  # no file: VTK's reader complains about a piece without points
-    writer = vtkXMLPolyDataWriter()
-    writer.SetInputData(output)
-    writer.SetFileName(os.path.join(args.case, "%s_%s_%d.vtp" % (args.out, name, rank)))
-    writer.Write()
+    for port, output_name in enumerate(("glyphs", "fits") if name == "glyphs" else (name,)):
+        output = proxy.GetClientSideObject().GetOutputDataObject(port)
+        if output.GetNumberOfPoints() == 0:
+            continue  # no file: VTK's reader complains about a piece without points
+        writer = vtkXMLImageDataWriter() if name == "grid" else vtkXMLPolyDataWriter()
+        writer.SetInputData(output)
+        writer.SetFileName(os.path.join(args.case, "%s_%s_%d.%s" % (
+            args.out, output_name, rank, "vti" if name == "grid" else "vtp")))
+        writer.Write()

@@ -1,4 +1,4 @@
-"""Distributed projection and domain classification against the one-process run (ctest
+"""Distributed projection, domain classification and field sampling against the one-process run (ctest
 ParaView.Mpi.Distributed.<case>).
 
     pvpython test_mpi_distributed.py --case NAME --np N --plugin PointSetSurfaces.so
@@ -6,10 +6,14 @@ ParaView.Mpi.Distributed.<case>).
 
 Writes a small noisy sphere (a few thousand points, seeded) as a .pvtp of pieces, runs
 mpi_distributed_worker.py once in one process (pvbatch) and once with `mpiexec --oversubscribe
--np N pvbatch --symmetric`, then checks for both filters: no point lost or duplicated (count and
-GlobalPointIds = 0..n-1), every point array of the one-process output equal at each global id
-(integers identical, doubles bitwise, NaN = NaN), positions bitwise (else within max(1e-9 h,
-4 ulp), reported), and ScaleFactor (the automatic h) identical on every rank. Cases:
+-np N pvbatch --symmetric`, then checks for the projection, the classifier and the field sampler
+(probing the start points or the cloud): no point lost or duplicated (count and GlobalPointIds =
+0..n-1), every point array of the one-process output equal at each global id (integers identical,
+doubles bitwise, NaN = NaN), positions bitwise (else within max(1e-9 h, 4 ulp), reported), and
+ScaleFactor (the automatic h) identical on every rank; for the sampler's own grid: the ranks'
+parts cover the one-process image's extent, with its origin and spacing and every array bitwise
+equal there; for the energy glyphs and their best fits: the ranks' outputs, concatenated in rank
+order, are the one-process output (points, point and cell arrays bitwise). Cases:
   rank0     the whole cloud in one piece: read by rank 0 only
   tiled     the cloud in N slabs along x, separate start points in N-1 pieces (one rank has none)
             with NaN and Inf start points and NaN/Inf cloud points
@@ -31,7 +35,7 @@ import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkPolyData
-from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPolyDataReader, vtkXMLPolyDataWriter
 
 parser = argparse.ArgumentParser()
 parser.add_argument("--case", required=True)
@@ -44,6 +48,9 @@ parser.add_argument("--timeout", type=float, default=100)
 args = parser.parse_args()
 worker = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mpi_distributed_worker.py")
 problems = []
+POINT_FILTERS = ("projection", "classifier", "sampler")  # outputs: points with GlobalPointIds
+CONCATENATED = ("glyphs", "fits")  # the energy glyphs' two outputs: rank by rank, in sample order
+FILTERS = POINT_FILTERS + ("grid", "glyphs")  # grid: the sampler's own image, split by extent
 
 
 def write_pieces(directory, name, xyz, piece_of, pieces):
@@ -130,32 +137,97 @@ def run(command, name):
 
 
 def read(path):
-    """The polydata in path, or an empty one when the worker wrote none (an empty output)."""
+    """The dataset in path (.vtp or .vti), or an empty polydata when the worker wrote none."""
     if not os.path.exists(path):
         return vtkPolyData()
-    reader = vtkXMLPolyDataReader()
+    reader = vtkXMLImageDataReader() if path.endswith(".vti") else vtkXMLPolyDataReader()
     reader.SetFileName(path)
     reader.Update()
     return reader.GetOutput()
 
 
+def output_path(directory, run, name, rank):
+    return os.path.join(directory, "%s_%s_%d.%s" % (run, name, rank, "vti" if name == "grid" else "vtp"))
+
+
+def same_bits(a, b):
+    if a.dtype.kind != "f":
+        return np.array_equal(a, b)
+    return a.shape == b.shape and np.array_equal(a.view(np.uint8), b.view(np.uint8))
+
+
+def compare_grid(directory):
+    """Each rank's part of the sampler's image against the one-process image, bitwise."""
+    serial = read(output_path(directory, "serial", "grid", 0))
+    whole = serial.GetExtent()
+    dims = [whole[2 * a + 1] - whole[2 * a] + 1 for a in range(3)]
+    want = {k: v.reshape(dims[2], dims[1], dims[0], -1) for k, v in arrays_of(serial).items()}
+    covered = np.zeros((dims[2], dims[1], dims[0]), dtype=bool)
+    for r in range(args.np):
+        part = read(output_path(directory, "parallel", "grid", r))
+        if part.GetNumberOfPoints() == 0:
+            continue
+        if part.GetOrigin() != serial.GetOrigin() or part.GetSpacing() != serial.GetSpacing():
+            problems.append("grid: rank %d has origin %r spacing %r, one process %r %r" % (
+                r, part.GetOrigin(), part.GetSpacing(), serial.GetOrigin(), serial.GetSpacing()))
+        e = part.GetExtent()
+        block = tuple(slice(e[2 * a] - whole[2 * a], e[2 * a + 1] - whole[2 * a] + 1) for a in (2, 1, 0))
+        shape = [e[2 * a + 1] - e[2 * a] + 1 for a in (2, 1, 0)]
+        got = arrays_of(part)
+        for key, a in want.items():
+            if key not in got:
+                problems.append("grid: array %s missing on rank %d" % (key, r))
+            elif not same_bits(np.ascontiguousarray(a[block]), got[key].reshape(shape + [-1])):
+                problems.append("grid: %s differs on rank %d (extent %r)" % (key, r, e))
+        covered[block] = True
+    if not covered.all():
+        problems.append("grid: the ranks' parts miss %d of %d samples" % (int((~covered).sum()), covered.size))
+    else:
+        print("ok   %-10s %d samples in %d parts, %d arrays, bitwise equal" % (
+            "grid", covered.size, sum(read(output_path(directory, "parallel", "grid", r)).GetNumberOfPoints() > 0
+                                      for r in range(args.np)), len(want)), flush=True)
+
+
 def arrays_of(poly):
     pd = poly.GetPointData()
-    out = {"Points": vtk_to_numpy(poly.GetPoints().GetData()) if poly.GetNumberOfPoints() else np.zeros((0, 3))}
+    out = {}
+    if hasattr(poly, "GetPoints"):  # an image's points are its origin, spacing and extent
+        out["Points"] = vtk_to_numpy(poly.GetPoints().GetData()) if poly.GetNumberOfPoints() else np.zeros((0, 3))
     for i in range(pd.GetNumberOfArrays()):
         out[pd.GetArrayName(i)] = vtk_to_numpy(pd.GetArray(i))
     return out
 
 
-def compare(directory, name):
-    serial = read(os.path.join(directory, "serial_%s_0.vtp" % name))
-    pieces = [read(os.path.join(directory, "parallel_%s_%d.vtp" % (name, r))) for r in range(args.np)]
+def compare_concatenated(directory, name):
+    """The ranks' outputs of `name`, one after the other, against the one-process output."""
+    def everything(poly):
+        out = {"point " + k: v for k, v in arrays_of(poly).items()}
+        cd = poly.GetCellData()
+        out.update({"cell " + cd.GetArrayName(i): vtk_to_numpy(cd.GetArray(i)) for i in range(cd.GetNumberOfArrays())})
+        return out
+    want = everything(read(output_path(directory, "serial", name, 0)))
+    parts = [everything(p) for p in (read(output_path(directory, "parallel", name, r)) for r in range(args.np))
+             if p.GetNumberOfPoints() > 0]
+    before = len(problems)
+    for key, a in want.items():
+        b = np.concatenate([p[key] for p in parts if key in p]) if parts else a[:0]
+        if not same_bits(a, b):
+            problems.append("%s: %s differs (%d values, one process %d)" % (name, key, len(b), len(a)))
+    if len(problems) == before:
+        print("ok   %-10s %d points, %d arrays, in %d parts" % (
+            name, len(want["point Points"]), len(want) - 1, len(parts)), flush=True)
+
+
+def compare(directory, name, h):
+    """The ranks' outputs of filter `name` against the one-process output (h: the one-process h)."""
+    serial = read(output_path(directory, "serial", name, 0))
+    pieces = [read(output_path(directory, "parallel", name, r)) for r in range(args.np)]
     n = serial.GetNumberOfPoints()
-    h = serial.GetFieldData().GetArray("ScaleFactor").GetValue(0)
     for r, piece in enumerate(pieces):
-        if piece.GetNumberOfPoints() == 0:
+        scale = piece.GetFieldData().GetArray("ScaleFactor")
+        if piece.GetNumberOfPoints() == 0 or scale is None:  # the sampler's output is the probe's
             continue
-        ph = piece.GetFieldData().GetArray("ScaleFactor").GetValue(0)
+        ph = scale.GetValue(0)
         if ph != h:
             problems.append("%s: rank %d used h = %r, one process %r" % (name, r, ph, h))
     want = arrays_of(serial)
@@ -177,9 +249,7 @@ def compare(directory, name):
             continue
         b = got[key][order]
         if a.dtype.kind == "f":
-            same = np.array_equal(a.view(np.int64 if a.dtype == np.float64 else np.int32),
-                                  b.view(np.int64 if b.dtype == np.float64 else np.int32))
-            if not same:
+            if not same_bits(a, b):
                 bitwise = False
                 tol = np.maximum(1e-9 * h, 4 * np.spacing(np.abs(a)))
                 bad = ~((np.abs(a - b) <= tol) | (np.isnan(a) & np.isnan(b)))
@@ -203,21 +273,26 @@ def main():
                        + common + ["--out", "parallel"], "np %d" % args.np)
     if args.case in ("empty", "zeroh"):
         message = "the point cloud is empty" if args.case == "empty" else "invalid surface parameters"
-        for name in ("projection", "classifier"):
+        for name in FILTERS:
             for r in range(args.np):
-                if read(os.path.join(directory, "parallel_%s_%d.vtp" % (name, r))).GetNumberOfPoints():
+                if read(output_path(directory, "parallel", name, r)).GetNumberOfPoints():
                     problems.append("%s: rank %d has output on bad input" % (name, r))
-        expected = 2 * args.np  # each filter's error, once on every rank
-        if serial_log.count(message) != 2:
-            problems.append("one process: %d errors containing %r, expected 2" % (serial_log.count(message), message))
+        expected = len(FILTERS) * args.np  # each filter's error, once on every rank
+        if serial_log.count(message) != len(FILTERS):
+            problems.append("one process: %d errors containing %r, expected %d"
+                            % (serial_log.count(message), message, len(FILTERS)))
         if parallel_log.count(message) != expected:
             problems.append("np %d: %d errors containing %r, expected %d (one per filter and rank)"
                             % (args.np, parallel_log.count(message), message, expected))
         else:
             print("ok   every rank failed with %r" % message)
     else:
-        for name in ("projection", "classifier"):
-            compare(directory, name)
+        h = read(output_path(directory, "serial", "projection", 0)).GetFieldData().GetArray("ScaleFactor").GetValue(0)
+        for name in POINT_FILTERS:
+            compare(directory, name, h)
+        compare_grid(directory)
+        for name in CONCATENATED:
+            compare_concatenated(directory, name)
     for p in problems:
         print("FAIL:", p)
     return 1 if problems else 0
