@@ -12,6 +12,8 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
@@ -23,6 +25,7 @@
 #include <chrono>
 #include <optional>
 #include <sstream>
+#include <vector>
 #include <stdexcept>
 
 vtkStandardNewMacro(vtkPointSetSurfaceMesher);
@@ -145,6 +148,58 @@ void AddStatistics(const pss::MeshStatistics& st, vtkFieldData* fd)
 
 } // namespace
 
+namespace
+{
+// Keeps the cells [rank * n / ranks, (rank + 1) * n / ranks) of @p mesh (triangles, or polylines
+// in 2D) and the points they use, with their point data and `GlobalPointIds`, the points' ids in
+// the whole mesh: the ranks' shares, merged by global id, are the whole mesh again.
+void KeepShareOfCells(vtkPolyData* mesh, int rank, int ranks)
+{
+  const bool triangles = mesh->GetNumberOfPolys() > 0;
+  vtkCellArray* cells = triangles ? mesh->GetPolys() : mesh->GetLines();
+  const vtkIdType n = cells ? cells->GetNumberOfCells() : 0;
+  const vtkIdType first = n * rank / ranks;
+  const vtkIdType last = n * (rank + 1) / ranks;
+  std::vector<vtkIdType> newId(static_cast<std::size_t>(mesh->GetNumberOfPoints()), -1);
+  auto globalIds = pss_vtk::NewArray<vtkIdTypeArray>("GlobalPointIds", 0, 1);
+  vtkNew<vtkCellArray> kept;
+  std::vector<vtkIdType> ids;
+  for (vtkIdType c = first; c < last; ++c)
+  {
+    vtkIdType size = 0;
+    const vtkIdType* pts = nullptr;
+    cells->GetCellAtId(c, size, pts);
+    ids.assign(pts, pts + size);
+    for (vtkIdType& id : ids)
+    {
+      vtkIdType& mapped = newId[static_cast<std::size_t>(id)];
+      if (mapped < 0)
+      {
+        mapped = globalIds->InsertNextValue(id);
+      }
+      id = mapped;
+    }
+    kept->InsertNextCell(size, ids.data());
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataType(mesh->GetPoints()->GetDataType());
+  points->SetNumberOfPoints(globalIds->GetNumberOfTuples());
+  vtkNew<vtkPointData> pointData;
+  pointData->CopyAllocate(mesh->GetPointData(), globalIds->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < globalIds->GetNumberOfTuples(); ++i)
+  {
+    const vtkIdType old = globalIds->GetValue(i);
+    points->SetPoint(i, mesh->GetPoint(old));
+    pointData->CopyData(mesh->GetPointData(), old, i);
+  }
+  mesh->SetPoints(points);
+  mesh->GetPointData()->ShallowCopy(pointData);
+  mesh->GetPointData()->SetGlobalIds(globalIds);
+  mesh->SetPolys(triangles ? kept.Get() : nullptr);
+  mesh->SetLines(triangles ? nullptr : kept.Get());
+}
+}
+
 int vtkPointSetSurfaceMesher::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -199,6 +254,10 @@ int vtkPointSetSurfaceMesher::RequestData(
     output->GetFieldData()->AddArray(a);
   }
   AddStatistics(mesh->statistics, output->GetFieldData());
+  if (vtkMultiProcessController* controller = this->DistributedController())
+  {
+    KeepShareOfCells(output, controller->GetLocalProcessId(), controller->GetNumberOfProcesses());
+  }
   return 1;
 }
 

@@ -36,6 +36,13 @@
  * Threads with vtkSMPTools; reports progress and honours AbortExecute (empty output); the output
  * is bitwise the same on any number of threads.
  *
+ * Distributed runs (MPI, a global controller of several processes): every rank gathers the
+ * cloud's pieces and extracts the whole one-process mesh (the work is not split: the band's cells
+ * and their orientation, hole closing and piece removal are global); each rank then keeps its
+ * share of the cells, rank r the cells [r T / N, (r + 1) T / N) of T, with the points they use
+ * and `GlobalPointIds`, their ids in the whole mesh. Merged by global id, the ranks' outputs are
+ * the one-process mesh, so that a distributed pipeline can render or write it in parallel.
+ *
  * @sa vtkPointSetSurfaceDomainClassifier vtkPointSetSurfaceFieldSampler vtkPointSetSurface
  */
 
@@ -188,6 +195,9 @@ protected:
   ~vtkPointSetSurfaceMesher() override;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// The mesh gives the one-process result in a distributed run (see the class description).
+  bool SupportsDistributedRun() const override { return true; }
 
   double CellSize = 1.0;
   double Band = 1.0;

@@ -5,7 +5,7 @@
 
 Reads DIR/case.json (the cloud .pvtp, optional start points .pvtp, surface settings), applies the
 projection, the domain classifier, the field sampler (probing the start points, or the cloud) and
-the energy glyphs (at the start points, or the cloud), and writes each rank's own output of each
+the energy glyphs (at the start points, or the cloud) and the mesher, and writes each rank's own output of each
 filter to DIR/NAME_<filter>_<rank>.vtp (double coordinates, binary: bit-exact; no file for an
 empty output; the glyphs' two outputs as `glyphs` and `fits`); and the sampler's own grid, each
 rank's part of it, to DIR/NAME_grid_<rank>.vti. Ends normally (pvbatch then finalizes MPI on every rank); the driver judges the files
@@ -49,6 +49,7 @@ filters = (
     ("grid", lambda: sampler(GenerateSamplingGrid=1, SampleDimensions=[13, 11, 9])),
     ("glyphs", lambda: PointSetSurfaceEnergyGlyphs(Input=cloud, SamplePoints=inputs.get("StartPoints", cloud),
                                                    Resolution=8)),
+    ("mesh", lambda: PointSetSurfaceMesh(Input=cloud)),
 )
 for name, make in filters:
     proxy = make()

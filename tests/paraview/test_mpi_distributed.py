@@ -13,7 +13,9 @@ doubles bitwise, NaN = NaN), positions bitwise (else within max(1e-9 h, 4 ulp), 
 ScaleFactor (the automatic h) identical on every rank; for the sampler's own grid: the ranks'
 parts cover the one-process image's extent, with its origin and spacing and every array bitwise
 equal there; for the energy glyphs and their best fits: the ranks' outputs, concatenated in rank
-order, are the one-process output (points, point and cell arrays bitwise). Cases:
+order, are the one-process output (points, point and cell arrays bitwise); for the mesh: the
+ranks' triangles, in rank order and mapped through GlobalPointIds, are the one-process triangles,
+and every vertex and its arrays are bitwise those of the one-process mesh. Cases:
   rank0     the whole cloud in one piece: read by rank 0 only
   tiled     the cloud in N slabs along x, separate start points in N-1 pieces (one rank has none)
             with NaN and Inf start points and NaN/Inf cloud points
@@ -50,7 +52,7 @@ worker = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mpi_distribut
 problems = []
 POINT_FILTERS = ("projection", "classifier", "sampler")  # outputs: points with GlobalPointIds
 CONCATENATED = ("glyphs", "fits")  # the energy glyphs' two outputs: rank by rank, in sample order
-FILTERS = POINT_FILTERS + ("grid", "glyphs")  # grid: the sampler's own image, split by extent
+FILTERS = POINT_FILTERS + ("grid", "glyphs", "mesh")  # grid: the sampler's own image, split by extent
 
 
 def write_pieces(directory, name, xyz, piece_of, pieces):
@@ -218,6 +220,44 @@ def compare_concatenated(directory, name):
             name, len(want["point Points"]), len(want) - 1, len(parts)), flush=True)
 
 
+def compare_mesh(directory):
+    """The ranks' shares of the mesh, merged by GlobalPointIds, against the one-process mesh."""
+    def cells(poly):
+        c = poly.GetPolys() if poly.GetNumberOfPolys() else poly.GetLines()
+        return vtk_to_numpy(c.GetConnectivityArray()), vtk_to_numpy(c.GetOffsetsArray())
+    serial = read(output_path(directory, "serial", "mesh", 0))
+    want = arrays_of(serial)
+    conn, offsets = cells(serial)
+    seen = np.zeros(serial.GetNumberOfPoints(), dtype=bool)
+    merged_conn, merged_sizes = [], []
+    before = len(problems)
+    for r in range(args.np):
+        part = read(output_path(directory, "parallel", "mesh", r))
+        if part.GetNumberOfPoints() == 0:
+            continue
+        got = arrays_of(part)
+        ids = got.pop("GlobalPointIds", None)
+        if ids is None:
+            problems.append("mesh: no GlobalPointIds on rank %d" % r)
+            return
+        for key, a in want.items():
+            if key not in got or not same_bits(a[ids], got[key]):
+                problems.append("mesh: %s differs on rank %d" % (key, r))
+        seen[ids] = True
+        c, o = cells(part)
+        merged_conn.append(ids[c])
+        merged_sizes.append(np.diff(o))
+    merged = np.concatenate(merged_conn) if merged_conn else conn[:0]
+    sizes = np.concatenate(merged_sizes) if merged_sizes else np.diff(offsets)[:0]
+    if not (np.array_equal(merged, conn) and np.array_equal(sizes, np.diff(offsets))):
+        problems.append("mesh: the ranks' %d cells are not the one-process %d cells" % (len(sizes), len(offsets) - 1))
+    if not seen.all():
+        problems.append("mesh: %d of %d vertices on no rank" % (int((~seen).sum()), len(seen)))
+    if len(problems) == before:
+        print("ok   %-10s %d points, %d cells, %d arrays, bitwise equal" % (
+            "mesh", len(seen), len(offsets) - 1, len(want) - 1), flush=True)
+
+
 def compare(directory, name, h):
     """The ranks' outputs of filter `name` against the one-process output (h: the one-process h)."""
     serial = read(output_path(directory, "serial", name, 0))
@@ -293,6 +333,7 @@ def main():
         compare_grid(directory)
         for name in CONCATENATED:
             compare_concatenated(directory, name)
+        compare_mesh(directory)
     for p in problems:
         print("FAIL:", p)
     return 1 if problems else 0
