@@ -309,9 +309,11 @@ void Validate(const std::string& path)
     static const char* const faceScalars[] = { "intensity", "red", "green", "blue", "alpha" };
     static const char* const faceLists[] = { "vertex_indices", "vertex_index", "texcoord" };
     vertex = e.name == "vertex" ? &e : vertex;
-    if (e.count > 0 && e.properties.empty())
+    // VTK's reader frees an uninitialized property list when it closes a file with such an
+    // element, rows or not (a crash the fuzzer found with 'element face 0' and no property).
+    if (e.properties.empty())
     {
-      throw std::runtime_error(where + "element '" + e.name + "' has rows but no properties");
+      throw std::runtime_error(where + "element '" + e.name + "' declares no properties");
     }
     for (const Property& p : e.properties)
     {

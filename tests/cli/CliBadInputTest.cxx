@@ -176,7 +176,8 @@ TEST(CliBadInput, MalformedTables)
 }
 
 // PLY: VTK's reader aborted (assert) or crashed on each of these before pss checked them (the
-// face index past the vertices: a segfault found by Fuzz.cli_input).
+// face index past the vertices and an element without properties: segfaults found by
+// Fuzz.cli_input).
 TEST(CliBadInput, MalformedPly)
 {
   const std::string header = kPlyHeader;
@@ -199,6 +200,8 @@ TEST(CliBadInput, MalformedPly)
                                                   "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"),
     "vertex index 7.000000 outside [0, 3)");
 
+  ExpectRejected(Write("element-without-properties.ply", header + "element face 0\nend_header\n0 0 0\n1 0 0\n0 1 0\n"),
+    "element 'face' declares no properties");
   ExpectRejected(Write("face-without-indices.ply", header + "element face 1\nproperty list uchar int vertex_indicez\n"
                                                             "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
     "element 'face' has no 'vertex_indices'");
