@@ -338,7 +338,7 @@ def compare(directory, name, h):
         name, n, len(want) - 1, h, "bitwise equal" if bitwise else "positions within tolerance"), flush=True)
 
 
-# One line of VTK's log: the rank (None in one process), then the message ("vtkClass (0x...): text").
+# One line of VTK's log: the rank (no number in one process), then the message ("vtkClass (0x...): text").
 LOG_LINE = re.compile(r"\[pvbatch(?:\.(\d+))?\s*\][^|]*\|\s*(vtk\w+) \(0x[0-9a-f]+\): (.*)")
 SKIPPED = re.compile(r"(\d+) (cloud|start|sample) point\(s\) ")
 
