@@ -112,6 +112,7 @@ DomainEvidence classifyStart(const SurfaceDefinition& s, const Vec3& start, cons
 
   const PointIndex& index = s.index();
   const auto nearest = index.nearest(r.point);
+  noteReach(index, index.restrict(r.point), nearest.second, ws);
   ev.distanceToCloud = std::sqrt(nearest.second);
   ev.startAngle = unorientedAngleDegrees(r.startDirection.n, r.direction.n);
 

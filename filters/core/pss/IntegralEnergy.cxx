@@ -196,6 +196,7 @@ LineSample IntegralEnergy::lineSample(const Vec3& y, const Vec3& a, Workspace& w
   out.slope = sums.slope;
   out.curvature = sums.curvature;
   out.nearestSqDist = Index.nearest(y).second;
+  noteReach(Index, Index.restrict(y), out.nearestSqDist, ws);
   return out;
 }
 

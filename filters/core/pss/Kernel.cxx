@@ -549,12 +549,21 @@ void focusNeighbourhoods(
   ws.focused.focus(ws.wide, c, reach, ws.focusSq);
 }
 
+void noteReach(const PointIndex& index, const Vec3& y, double sqRadius, Workspace& ws)
+{
+  if (!index.holdsBall(y, std::sqrt(sqRadius)))
+  {
+    ws.leftCompleteRegion = true;
+  }
+}
+
 void gatherNeighbourhood(
   const PointIndex& index, const SurfaceParameters& params, const Vec3& y, Neighbourhood& nb, Workspace& ws)
 {
   const Vec3 origin = index.restrict(y);
   if (nb.indexSerial == index.serial() && nb.h == params.h && nb.cutoff == params.cutoff && nb.origin == origin)
   {
+    noteReach(index, origin, nb.minSqDist + params.cutoff * params.cutoff * params.h * params.h, ws);
     return;
   }
   nb.indexSerial = 0; // until the new contents are complete
@@ -578,6 +587,7 @@ void gatherNeighbourhood(
     nb.origin, minSq + cache.band, minSq, nb);
   nb.count = n;
   nb.minSqDist = minSq;
+  noteReach(index, origin, minSq + cache.band, ws);
   // The last vector is padded with neighbours of weight 0 at offset 0, which add nothing.
   const Eigen::Index padded = (n + SimdLanes - 1) / SimdLanes * SimdLanes;
   for (Eigen::Index i = n; i < padded; ++i)

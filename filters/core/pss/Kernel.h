@@ -86,6 +86,10 @@ struct Neighbourhood
   void resize(Eigen::Index n);
 };
 
+/// Sets ws.leftCompleteRegion when the ball of squared radius @p sqRadius around @p y (what an
+/// evaluation at y reads of the cloud) reaches beyond @p index's complete region.
+void noteReach(const PointIndex& index, const Vec3& y, double sqRadius, Workspace& ws);
+
 /**
  * Fills @p nb with the neighbourhood of @p y (see the file comment). Requires a non-empty index.
  * Returns at once when @p nb already holds this query (same index, h, cutoff and point).

@@ -56,6 +56,25 @@ bool isFinite(const Vec3& x)
   return std::isfinite(x.x()) && std::isfinite(x.y()) && std::isfinite(x.z());
 }
 
+void PointIndex::setCompleteRegion(const Vec3& lo, const Vec3& hi)
+{
+  CompleteLo = lo;
+  CompleteHi = hi;
+}
+
+bool PointIndex::holdsBall(const Vec3& c, double r) const
+{
+  // Written so that a NaN radius or centre counts as outside (and an open side never limits).
+  for (int a = 0; a < Dimension; ++a)
+  {
+    if (!(c[a] - r >= CompleteLo[a]) || !(c[a] + r <= CompleteHi[a]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 int detectDimension(const std::vector<Vec3>& points)
 {
   double zMin = std::numeric_limits<double>::infinity();
@@ -70,6 +89,11 @@ int detectDimension(const std::vector<Vec3>& points)
       hi = hi.cwiseMax(p);
     }
   }
+  return detectDimension(lo, hi);
+}
+
+int detectDimension(const Vec3& lo, const Vec3& hi)
+{
   if (!(lo.x() <= hi.x()))
   {
     return 3;

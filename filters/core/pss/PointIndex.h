@@ -15,6 +15,7 @@
 
 #include "pss/Types.h"
 
+#include <limits>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -51,6 +52,16 @@ public:
   const Vec3& centroid() const { return Centroid; }
   const Vec3& boundsMin() const { return BoundsMin; }
   const Vec3& boundsMax() const { return BoundsMax; }
+
+  /**
+   * In a distributed run the index holds a rank's piece of the cloud plus ghost points: every
+   * cloud point inside the box [lo, hi] (a side at -inf/+inf is open: the cloud has no point
+   * beyond it), but not the points outside. Default: the whole space, i.e. the whole cloud.
+   */
+  void setCompleteRegion(const Vec3& lo, const Vec3& hi);
+  /// True when the ball of radius @p r around @p c lies inside the complete region, so that a
+  /// query of that ball sees exactly the points the whole cloud has there.
+  bool holdsBall(const Vec3& c, double r) const;
 
   /// A number no other PointIndex of this process has: a safe cache key (addresses get reused).
   std::uint64_t serial() const { return Serial; }
@@ -101,6 +112,8 @@ private:
   Vec3 Centroid = Vec3::Zero();
   Vec3 BoundsMin = Vec3::Zero();
   Vec3 BoundsMax = Vec3::Zero();
+  Vec3 CompleteLo = Vec3::Constant(-std::numeric_limits<double>::infinity());
+  Vec3 CompleteHi = Vec3::Constant(std::numeric_limits<double>::infinity());
   std::unique_ptr<Tree> Impl;
 };
 
@@ -121,6 +134,10 @@ bool isFinite(const Vec3& x);
  * behind Dimension = Auto. An empty cloud counts as 3.
  */
 int detectDimension(const std::vector<Vec3>& points);
+
+/// The same rule from the finite points' bounds [lo, hi] (lo.x > hi.x: no finite point), which
+/// a distributed run reduces over its ranks.
+int detectDimension(const Vec3& lo, const Vec3& hi);
 
 /**
  * The automatic scale: h = multiplier * median over points of the distance to their k-th nearest

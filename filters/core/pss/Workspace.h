@@ -80,6 +80,12 @@ struct Workspace
   Eigen::ArrayXd candidateSq;
   Eigen::ArrayXd focusSq;
   PointIndex::LeafRanges leaves;
+
+  /// Not a cache but a report: set (never cleared by the core) when an evaluation needed cloud
+  /// points beyond the index's complete region (PointIndex::setCompleteRegion), so that its result
+  /// may differ from the whole cloud's. A distributed caller clears it before a projection and
+  /// finishes the flagged ones again with more ghost points.
+  bool leftCompleteRegion = false;
 };
 
 } // namespace pss
