@@ -2,6 +2,7 @@
 #include "PointSetSurfacesVTKUtilities.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCommunicator.h"
 #include "vtkObject.h"
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
@@ -17,7 +18,11 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstdint>
+#include <limits>
+
+#include "pss/PointIndex.h"
 
 namespace pss_vtk
 {
@@ -191,6 +196,155 @@ vtkSmartPointer<vtkPolyData> GatherCloud(
   auto whole = vtkSmartPointer<vtkPolyData>::New();
   whole->SetPoints(points);
   return whole;
+}
+
+bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMultiProcessController* controller,
+  vtkPointSet* cloud, GhostRun& run)
+{
+  run.Own.clear();
+  const vtkIdType n = cloud ? cloud->GetNumberOfPoints() : 0;
+  run.Own.reserve(static_cast<std::size_t>(3 * n));
+  // Counts (all, finite), coordinate sums, then bounds: one reduction each.
+  double sums[5] = { static_cast<double>(n), 0.0, 0.0, 0.0, 0.0 };
+  double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+  double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    cloud->GetPoint(i, p);
+    if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+    {
+      continue;
+    }
+    run.Own.insert(run.Own.end(), p, p + 3);
+    sums[1] += 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      sums[2 + a] += p[a];
+      lo[a] = std::min(lo[a], p[a]);
+      hi[a] = std::max(hi[a], p[a]);
+    }
+  }
+  double total[5];
+  controller->AllReduce(sums, total, 5, vtkCommunicator::SUM_OP);
+  controller->AllReduce(lo, run.Lo, 3, vtkCommunicator::MIN_OP);
+  controller->AllReduce(hi, run.Hi, 3, vtkCommunicator::MAX_OP);
+  if (total[0] == 0.0 || total[1] == 0.0)
+  {
+    vtkErrorWithObjectMacro(algorithm, << "cannot define the surface: "
+                                       << (total[0] == 0.0 ? "the point cloud is empty"
+                                                           : "the point cloud has no point with finite coordinates"));
+    return false;
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    run.Centroid[a] = total[2 + a] / total[1];
+  }
+  const int asked = surface ? surface->GetDimension() : 0;
+  run.Dimension = asked == vtkPointSetSurface::DIMENSION_AUTO
+    ? pss::detectDimension(pss::Vec3(run.Lo[0], run.Lo[1], run.Lo[2]), pss::Vec3(run.Hi[0], run.Hi[1], run.Hi[2]))
+    : asked;
+  const double skipped = total[0] - total[1];
+  if (skipped > 0.0)
+  {
+    vtkWarningWithObjectMacro(algorithm, << static_cast<vtkIdType>(skipped)
+                                         << " cloud point(s) with NaN or infinite coordinates were left out of the surface");
+  }
+  return true;
+}
+
+bool PrepareGhostSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
+  vtkMultiProcessController* controller, const GhostRun& run, const double lo[3], const double hi[3])
+{
+  if (!surface)
+  {
+    vtkErrorWithObjectMacro(algorithm, << "no vtkPointSetSurface is set");
+    return false;
+  }
+  const int ranks = controller->GetNumberOfProcesses();
+  const int me = controller->GetLocalProcessId();
+  const double box[6] = { lo[0], lo[1], lo[2], hi[0], hi[1], hi[2] };
+  std::vector<double> boxes(static_cast<std::size_t>(6 * ranks));
+  controller->AllGather(box, boxes.data(), 6);
+  // What this rank sends each other rank: its own points inside that rank's box.
+  std::vector<std::vector<double>> outgoing(static_cast<std::size_t>(ranks));
+  std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks), 0);
+  for (int r = 0; r < ranks; ++r)
+  {
+    const double* b = &boxes[static_cast<std::size_t>(6 * r)];
+    if (r == me || !(b[0] <= b[3]))
+    {
+      continue;
+    }
+    std::vector<double>& out = outgoing[static_cast<std::size_t>(r)];
+    for (std::size_t i = 0; i < run.Own.size(); i += 3)
+    {
+      const double* p = &run.Own[i];
+      if (p[0] >= b[0] && p[0] <= b[3] && p[1] >= b[1] && p[1] <= b[4] && p[2] >= b[2] && p[2] <= b[5])
+      {
+        out.insert(out.end(), p, p + 3);
+      }
+    }
+    lengths[static_cast<std::size_t>(r)] = static_cast<vtkIdType>(out.size());
+  }
+  std::vector<vtkIdType> all(static_cast<std::size_t>(ranks * ranks));
+  controller->AllGather(lengths.data(), all.data(), ranks);
+  // Row s of all: what rank s sends to each rank. MPI counts are ints: every rank sees the sums.
+  for (int r = 0; r < ranks; ++r)
+  {
+    vtkIdType incoming = 0;
+    for (int s2 = 0; s2 < ranks; ++s2)
+    {
+      incoming += all[static_cast<std::size_t>(s2 * ranks + r)];
+    }
+    if (incoming > vtkIdType(INT_MAX))
+    {
+      vtkErrorWithObjectMacro(algorithm, << "rank " << r << "'s ghost points (" << incoming / 3
+                                         << ") exceed one MPI message (2^31 - 1 coordinates): lower GhostMargin");
+      return false;
+    }
+  }
+  std::vector<double> local = run.Own;
+  for (int r = 0; r < ranks; ++r)
+  {
+    std::vector<vtkIdType> counts(static_cast<std::size_t>(ranks));
+    std::vector<vtkIdType> offsets(static_cast<std::size_t>(ranks));
+    vtkIdType total = 0;
+    for (int s2 = 0; s2 < ranks; ++s2)
+    {
+      counts[static_cast<std::size_t>(s2)] = all[static_cast<std::size_t>(s2 * ranks + r)];
+      offsets[static_cast<std::size_t>(s2)] = total;
+      total += counts[static_cast<std::size_t>(s2)];
+    }
+    if (total == 0)
+    {
+      continue; // every rank knows it: no message at all
+    }
+    std::vector<double> received(r == me ? static_cast<std::size_t>(total) : 0);
+    const std::vector<double>& out = outgoing[static_cast<std::size_t>(r)];
+    controller->GatherV(out.data(), received.data(), static_cast<vtkIdType>(out.size()), counts.data(),
+      offsets.data(), r);
+    local.insert(local.end(), received.begin(), received.end());
+  }
+  if (!(lo[0] <= hi[0]))
+  {
+    return true; // this rank asked for nothing: its surface stays as it is
+  }
+  // The box is complete; a side beyond the cloud's bounds is open (no point lies past it).
+  const double inf = std::numeric_limits<double>::infinity();
+  double regionLo[3];
+  double regionHi[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    regionLo[a] = lo[a] <= run.Lo[a] ? -inf : lo[a];
+    regionHi[a] = hi[a] >= run.Hi[a] ? inf : hi[a];
+  }
+  if (!surface->PreparePiece(local, run.Dimension, regionLo, regionHi))
+  {
+    vtkErrorWithObjectMacro(algorithm, << "cannot define the surface: " << surface->GetLastError());
+    return false;
+  }
+  return true;
 }
 
 void AddGlobalPointIds(vtkPointData* pd, vtkIdType first, vtkIdType n)

@@ -91,6 +91,39 @@ bool PrepareDistributedSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surf
 vtkSmartPointer<vtkPolyData> GatherCloud(
   vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud);
 
+/**
+ * What the ranks of a run with ghost points (GhostMargin > 0) share, from BeginGhostRun(): the
+ * finite cloud's bounds, count and centroid over every rank, its dimension, and this rank's own
+ * finite cloud points, which it sends to the ranks that ask for them.
+ */
+struct GhostRun
+{
+  double Lo[3] = { 0.0, 0.0, 0.0 };
+  double Hi[3] = { 0.0, 0.0, 0.0 };
+  double Centroid[3] = { 0.0, 0.0, 0.0 };
+  int Dimension = 3;
+  std::vector<double> Own; ///< x, y, z of this rank's finite cloud points
+};
+
+/**
+ * Collective over @p controller: the GhostRun of every rank's @p cloud. On an empty cloud (or one
+ * with no finite point) on every rank, every rank reports the one-process error and returns
+ * false; otherwise it warns, on every rank, of the cloud points left out for NaN/Inf as one
+ * process does.
+ */
+bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMultiProcessController* controller,
+  vtkPointSet* cloud, GhostRun& run);
+
+/**
+ * Collective over @p controller: prepares @p surface on this rank's own points plus every other
+ * rank's points inside the box [@p lo, @p hi] (lo[0] > hi[0]: none, and the surface is left as
+ * it is), complete inside that box (vtkPointSetSurface::PreparePiece). The parameters are
+ * checked alike on every rank, so all fail or none. Returns false after an error of
+ * @p algorithm.
+ */
+bool PrepareGhostSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
+  vtkMultiProcessController* controller, const GhostRun& run, const double lo[3], const double hi[3]);
+
 /// Unless @p pd has global ids already, gives its @p n tuples the global ids first, first + 1, ...
 /// as `GlobalPointIds` (the distributed filters' outputs, gathered, then match one process's).
 void AddGlobalPointIds(vtkPointData* pd, vtkIdType first, vtkIdType n);

@@ -75,20 +75,95 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
     points[static_cast<std::size_t>(i)] = pss::Vec3(p[0], p[1], p[2]);
   }
   const int dimension = this->Dimension == DIMENSION_AUTO ? pss::detectDimension(points) : this->Dimension;
-
+  std::unique_ptr<pss::PointIndex> index;
   try
   {
-    auto index = std::make_unique<pss::PointIndex>(std::move(points), dimension);
-    this->SkippedPoints = static_cast<vtkIdType>(index->skippedCount());
-    if (index->empty())
+    index = std::make_unique<pss::PointIndex>(std::move(points), dimension);
+  }
+  catch (const std::exception& e)
+  {
+    return this->Fail(std::string("invalid surface parameters: ") + e.what());
+  }
+  if (!this->Build(std::move(index)))
+  {
+    return false;
+  }
+  this->LastError.clear();
+  this->PreparedCloud = cloud;
+  this->PreparedTime = stamp;
+  return true;
+}
+
+bool vtkPointSetSurface::PreparePiece(
+  const std::vector<double>& points, int dimension, const double lo[3], const double hi[3])
+{
+  this->PreparedCloud = nullptr;
+  // The parameters first, so that every rank fails alike whatever its piece holds.
+  if (this->AutomaticScale)
+  {
+    return this->Fail("the automatic scale samples the whole cloud, which no rank holds here: turn "
+                      "AutomaticScale off and set ScaleFactor (or let every rank gather the whole cloud)");
+  }
+  if (dimension != 2 && dimension != 3)
+  {
+    return this->Fail("Dimension must be Auto (0), 2 or 3, not 1");
+  }
+  std::unique_ptr<pss::PointIndex> index;
+  try
+  {
+    this->Parameters(this->ScaleFactor).validate();
+    if (points.empty())
     {
-      return this->Fail("the point cloud has no point with finite coordinates");
+      // Nothing to define: the caller waits for ghost points.
+      this->Definition.reset();
+      this->Index.reset();
+      this->LastError.clear();
+      return true;
     }
-    double h = this->ScaleFactor;
+    std::vector<pss::Vec3> vectors(points.size() / 3);
+    for (std::size_t i = 0; i < vectors.size(); ++i)
+    {
+      vectors[i] = pss::Vec3(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
+    }
+    index = std::make_unique<pss::PointIndex>(std::move(vectors), dimension);
+    index->setCompleteRegion(pss::Vec3(lo[0], lo[1], lo[2]), pss::Vec3(hi[0], hi[1], hi[2]));
+  }
+  catch (const std::exception& e)
+  {
+    return this->Fail(std::string("invalid surface parameters: ") + e.what());
+  }
+  if (!this->Build(std::move(index)))
+  {
+    return false;
+  }
+  this->LastError.clear();
+  return true;
+}
+
+pss::SurfaceParameters vtkPointSetSurface::Parameters(double h) const
+{
+  pss::SurfaceParameters params;
+  params.h = h;
+  params.cutoff = this->KernelCutoff;
+  params.quadratureOrder = this->QuadratureOrder;
+  params.minStability = this->MinimumStability;
+  return params;
+}
+
+bool vtkPointSetSurface::Build(std::unique_ptr<pss::PointIndex> index)
+{
+  this->SkippedPoints = static_cast<vtkIdType>(index->skippedCount());
+  if (index->empty())
+  {
+    return this->Fail("the point cloud has no point with finite coordinates");
+  }
+  try
+  {
+    pss::SurfaceParameters params = this->Parameters(this->ScaleFactor);
     if (this->AutomaticScale)
     {
-      h = pss::estimateScale(*index, this->ScaleNeighbors, this->ScaleMultiplier);
-      if (!(h > 0.0))
+      params.h = pss::estimateScale(*index, this->ScaleNeighbors, this->ScaleMultiplier);
+      if (!(params.h > 0.0))
       {
         std::ostringstream msg;
         msg << "the automatic scale is 0: the " << index->size() << " finite points have fewer than "
@@ -97,23 +172,15 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
         return this->Fail(msg.str());
       }
     }
-    pss::SurfaceParameters params;
-    params.h = h;
-    params.cutoff = this->KernelCutoff;
-    params.quadratureOrder = this->QuadratureOrder;
-    params.minStability = this->MinimumStability;
     this->Definition = pss::makeSurface(static_cast<pss::Variant>(this->Variant), *index, params);
+    this->EffectiveScale = params.h;
+    this->EffectiveDimension = index->dimension();
     this->Index = std::move(index);
-    this->EffectiveScale = h;
-    this->EffectiveDimension = dimension;
   }
   catch (const std::exception& e)
   {
     return this->Fail(std::string("invalid surface parameters: ") + e.what());
   }
-  this->LastError.clear();
-  this->PreparedCloud = cloud;
-  this->PreparedTime = stamp;
   return true;
 }
 

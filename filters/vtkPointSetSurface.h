@@ -29,6 +29,7 @@
 
 #include <memory> // for std::unique_ptr
 #include <string> // for std::string
+#include <vector> // for std::vector
 
 class vtkPointSet;
 
@@ -37,6 +38,7 @@ namespace pss
 {
 class PointIndex;
 class SurfaceDefinition;
+struct SurfaceParameters;
 }
 #endif
 
@@ -168,6 +170,18 @@ public:
   /// The prepared definition (nullptr before a successful Prepare()).
   const pss::SurfaceDefinition* GetDefinition() const { return this->Definition.get(); }
   const pss::PointIndex* GetIndex() const { return this->Index.get(); }
+
+  /**
+   * Prepare() for one rank of a distributed run that holds only part of the cloud: @p points
+   * (x, y, z of each) are its piece plus ghost points, every cloud point inside the box [@p lo, @p hi] (sides at
+   * +-inf are open) and some outside; @p dimension is the whole cloud's (2 or 3). Evaluations
+   * that read beyond the box are flagged (pss::Workspace::leftCompleteRegion). The automatic
+   * scale samples the whole cloud, so it is refused here: AutomaticScale must be off. Checks the
+   * parameters before the points, so that every rank fails alike whatever its piece holds; with
+   * no point at all it then succeeds without a definition (GetDefinition() is nullptr: every
+   * evaluation on this rank needs ghost points first). Never reuses an earlier preparation.
+   */
+  bool PreparePiece(const std::vector<double>& points, int dimension, const double lo[3], const double hi[3]);
 #endif
 
 protected:
@@ -189,6 +203,10 @@ private:
   void operator=(const vtkPointSetSurface&) = delete;
 
   bool Fail(const std::string& message);
+  /// The core's parameters at scale @p h.
+  pss::SurfaceParameters Parameters(double h) const;
+  /// Takes @p index and builds the definition at h (ScaleFactor, or the automatic scale).
+  bool Build(std::unique_ptr<pss::PointIndex> index);
 
   std::unique_ptr<pss::PointIndex> Index;
   std::unique_ptr<pss::SurfaceDefinition> Definition;

@@ -55,6 +55,10 @@ bool vtkPointSetSurfaceDomainClassifier::BeginProjection(const pss::SurfaceDefin
   this->Internals->Thresholds = thresholds;
   this->Internals->Normals = std::make_unique<pss::CloudNormals>(surface);
   const vtkIdType n = numberOfStarts;
+  if (this->Internals->Label && this->Internals->Label->GetNumberOfTuples() == n)
+  {
+    return true; // a later round of a run with ghost points: the first round's values stay
+  }
   this->Internals->Label = pss_vtk::NewArray<vtkIntArray>("DomainLabel", n, 1);
   this->Internals->Distance = pss_vtk::NewArray<vtkDoubleArray>("DistanceToCloud", n, 1);
   this->Internals->NormalAngle = pss_vtk::NewArray<vtkDoubleArray>("NormalAngle", n, 1);

@@ -7,7 +7,9 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
+#include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -21,8 +23,10 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <exception>
+#include <numeric>
 #include <vector>
 
 #include "pss/ExtremalSurface.h"
@@ -157,6 +161,29 @@ void FillProjectionLines(vtkPoints* startPoints, const StandardArrays& arrays, c
   lines->GetCellData()->AddArray(lineStart);
 }
 
+// The box of the finite start points listed in @p which, grown by @p margin (lo > hi: none).
+void GrownBounds(vtkPoints* points, const std::vector<std::uint32_t>& which, double margin, double lo[3], double hi[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = VTK_DOUBLE_MAX;
+    hi[a] = -VTK_DOUBLE_MAX;
+  }
+  for (std::uint32_t i : which)
+  {
+    double p[3];
+    points->GetPoint(static_cast<vtkIdType>(i), p);
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], p[a] - margin);
+        hi[a] = std::max(hi[a], p[a] + margin);
+      }
+    }
+  }
+}
+
 } // namespace
 
 int vtkPointSetSurfaceProjection::RequestData(
@@ -167,63 +194,145 @@ int vtkPointSetSurfaceProjection::RequestData(
     inputVector[1]->GetNumberOfInformationObjects() > 0 ? vtkPointSet::GetData(inputVector[1], 0) : cloud;
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* lines = vtkPolyData::GetData(outputVector, 1);
-  if (!this->PrepareSurface(cloud))
+  this->GhostRounds = 0;
+  vtkMultiProcessController* controller = this->DistributedController();
+  const bool ghosts = controller && this->GhostMargin > 0.0;
+  const vtkIdType n = starts ? starts->GetNumberOfPoints() : 0;
+  vtkPoints* startPoints = n > 0 ? starts->GetPoints() : nullptr;
+  std::vector<std::uint32_t> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), 0u);
+  pss_vtk::GhostRun run;
+  double margin = this->GhostMargin * (this->Surface ? this->Surface->GetScaleFactor() : 0.0);
+  if (ghosts)
+  {
+    double lo[3];
+    double hi[3];
+    GrownBounds(startPoints, order, margin, lo, hi);
+    if (!pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run) ||
+      !pss_vtk::PrepareGhostSurface(this, this->Surface, controller, run, lo, hi))
+    {
+      return 0;
+    }
+  }
+  else if (!this->PrepareSurface(cloud))
   {
     return 0;
   }
   // Collective, so taken before any rank may return early for lack of start points.
-  vtkMultiProcessController* controller = this->DistributedController();
-  const vtkIdType firstGlobalId =
-    controller ? pss_vtk::GlobalOffset(controller, starts ? starts->GetNumberOfPoints() : 0) : 0;
-  if (!starts || starts->GetNumberOfPoints() == 0)
+  const vtkIdType firstGlobalId = controller ? pss_vtk::GlobalOffset(controller, n) : 0;
+  if (n == 0 && !ghosts)
   {
     return 1; // nothing to project: empty outputs
   }
 
-  const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
-  const pss::PointIndex& index = *this->Surface->GetIndex();
-  pss::ProjectionOptions options;
-  options.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
-  options.seekMaxima = this->SeekMaxima;
-  options.maxIterations = this->MaxIterations;
-  options.tolerance = this->Tolerance;
-  options.maxTravel = this->MaxTravel;
-
-  vtkPoints* startPoints = starts->GetPoints();
-  const vtkIdType n = starts->GetNumberOfPoints();
-  // Neighbours are visited together so that they share cached neighbourhoods. The indexed
-  // cloud's own points come in that order from the index at no cost (in a distributed run the
-  // index holds the gathered cloud, not this rank's piece); other start points are sorted.
-  const bool startsAreIndexed = starts == cloud && !this->GatheredCloud &&
-    static_cast<vtkIdType>(index.size() + index.skippedCount()) == n;
-  std::vector<std::uint32_t> order;
   try
   {
-    order = startsAreIndexed ? index.visitingOrder()
-      : pss::spatialOrder(pss_vtk::ToVectors(startPoints));
+    // Neighbours are visited together so that they share cached neighbourhoods. The indexed
+    // cloud's own points come in that order from the index at no cost (not in a distributed run:
+    // the index holds the gathered cloud or a piece with ghosts); other start points are sorted.
+    const pss::PointIndex* index = this->Surface->GetIndex();
+    const bool startsAreIndexed = starts == cloud && !controller && index &&
+      static_cast<vtkIdType>(index->size() + index->skippedCount()) == n;
+    order = startsAreIndexed ? index->visitingOrder() : pss::spatialOrder(pss_vtk::ToVectors(startPoints));
   }
   catch (const std::exception& e)
   {
     vtkErrorMacro(<< "cannot order the start points: " << e.what());
     return 0;
   }
-  if (!this->BeginProjection(surface, n))
-  {
-    return 0;
-  }
-  const pss::Orientation orientation = pss::Orientation::awayFromCentroid(index);
+  pss::ProjectionOptions options;
+  options.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
+  options.seekMaxima = this->SeekMaxima;
+  options.maxIterations = this->MaxIterations;
+  options.tolerance = this->Tolerance;
+  options.maxTravel = this->MaxTravel;
   StandardArrays arrays(n);
-  const bool completed = pss::forEachInOrder(order, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
-    const vtkIdType i = static_cast<vtkIdType>(k);
-    double start[3];
-    startPoints->GetPoint(i, start);
-    arrays.Set(i, this->ProjectPoint(i, start, surface, options, ws), start, index, orientation);
-  });
-  if (!completed)
+  // With ghost points, the starts whose projection read beyond this rank's complete region.
+  std::vector<unsigned char> escaped(ghosts ? static_cast<std::size_t>(n) : 0, 0);
+  for (int round = 1;; ++round)
   {
-    return 1; // aborted: leave the outputs empty
+    const pss::SurfaceDefinition* surface = this->Surface->GetDefinition();
+    if (surface && !order.empty())
+    {
+      if (!this->BeginProjection(*surface, n))
+      {
+        return 0;
+      }
+      const pss::PointIndex& index = *this->Surface->GetIndex();
+      pss::Orientation orientation = pss::Orientation::awayFromCentroid(index);
+      if (ghosts)
+      {
+        orientation.reference = pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]);
+      }
+      const bool completed =
+        pss::forEachInOrder(order, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
+          const vtkIdType i = static_cast<vtkIdType>(k);
+          double start[3];
+          startPoints->GetPoint(i, start);
+          ws.leftCompleteRegion = false;
+          arrays.Set(i, this->ProjectPoint(i, start, *surface, options, ws), start, index, orientation);
+          if (ghosts)
+          {
+            escaped[k] = ws.leftCompleteRegion ? 1 : 0;
+          }
+        });
+      if (!completed && !ghosts)
+      {
+        return 1; // aborted: leave the outputs empty (with ghosts every rank goes on to the end)
+      }
+    }
+    else
+    {
+      for (std::uint32_t k : order)
+      {
+        escaped[k] = 1; // no cloud point within reach yet
+      }
+    }
+    this->GhostRounds = ghosts ? round : 0;
+    if (!ghosts)
+    {
+      break;
+    }
+    std::vector<std::uint32_t> again;
+    for (std::uint32_t k : order)
+    {
+      if (escaped[k])
+      {
+        again.push_back(k);
+      }
+    }
+    vtkIdType local = static_cast<vtkIdType>(again.size());
+    vtkIdType total = 0;
+    controller->AllReduce(&local, &total, 1, vtkCommunicator::SUM_OP);
+    if (total == 0)
+    {
+      break;
+    }
+    // The next round's box: twice the margin around the starts to finish. Once it holds the
+    // cloud's bounds no read can leave it, so the rounds end.
+    margin *= 2.0;
+    double lo[3];
+    double hi[3];
+    GrownBounds(startPoints, again, margin, lo, hi);
+    if (!(lo[0] <= hi[0]) && !again.empty())
+    {
+      // Only NaN/Inf starts are left, on a rank without a surface yet: they need one to be
+      // flagged as such, so this rank takes the whole cloud (rare: no cloud point within reach).
+      std::copy(run.Lo, run.Lo + 3, lo);
+      std::copy(run.Hi, run.Hi + 3, hi);
+    }
+    order = std::move(again);
+    if (!pss_vtk::PrepareGhostSurface(this, this->Surface, controller, run, lo, hi))
+    {
+      return 0;
+    }
   }
   order = std::vector<std::uint32_t>();
+  if (n == 0)
+  {
+    return 1;
+  }
+  const pss::PointIndex& index = *this->Surface->GetIndex();
 
   vtkIdType invalid = 0;
   for (vtkIdType i = 0; i < n; ++i)
@@ -241,6 +350,12 @@ int vtkPointSetSurfaceProjection::RequestData(
   outPD->PassData(starts->GetPointData());
   arrays.AddTo(outPD);
   pss_vtk::AddSurfaceFieldData(output, this->Surface);
+  if (ghosts)
+  {
+    auto rounds = pss_vtk::NewArray<vtkIntArray>("GhostRounds", 1, 1);
+    rounds->SetValue(0, this->GhostRounds);
+    output->GetFieldData()->AddArray(rounds);
+  }
   if (!this->AddPointArrays(starts, outPD))
   {
     output->Initialize();

@@ -31,8 +31,14 @@
  * rank (in rank order), so the surface (automatic h, orientation, bounds) is bitwise the one of a
  * one-process run over the concatenated pieces, and each rank projects its own start points. The
  * output stays distributed; without global ids in the start points it gets `GlobalPointIds`
- * (the point's index in the concatenated start points). Each rank holds the whole cloud: memory
- * per rank does not shrink with more ranks yet.
+ * (the point's index in the concatenated start points). With GhostMargin 0 (the default) each
+ * rank holds the whole cloud: memory per rank does not shrink with more ranks. With GhostMargin
+ * > 0 each rank holds its own cloud points plus the other ranks' points inside the box of its
+ * start points grown by GhostMargin * h; a projection whose neighbourhoods reach beyond that box
+ * is flagged by the core and projected again in a next round with a box grown by twice the
+ * margin, until none is (at worst the box holds the whole cloud). Results then equal the
+ * one-process run's to rounding, not bitwise (neighbours are summed in another order; see the
+ * README), and the automatic scale is refused (it samples the whole cloud): set ScaleFactor.
  *
  * @sa vtkPointSetSurface vtkPointSetSurfaceDomainClassifier
  */
@@ -114,6 +120,23 @@ public:
   vtkBooleanMacro(GenerateProjectionLines, bool);
   ///@}
 
+  ///@{
+  /**
+   * Distributed runs only (ignored in one process): 0 (default) gathers the whole cloud on every
+   * rank, exact (bitwise the one-process result, automatic h allowed) but with every point on
+   * every rank; > 0 exchanges only ghost points, within this many h of the box of a rank's start
+   * points, for memory that shrinks with the number of ranks. A margin too small costs extra
+   * rounds, never accuracy. 4 (the kernel's support of 3 h plus 1 h of travel) is a good start.
+   */
+  vtkSetClampMacro(GhostMargin, double, 0.0, 1e6);
+  vtkGetMacro(GhostMargin, double);
+  ///@}
+
+  /// The rounds of ghost exchange the last distributed update with GhostMargin > 0 took (1: no
+  /// projection needed more ghost points; 0 otherwise). Also the output's field data
+  /// `GhostRounds` on ranks with start points.
+  vtkGetMacro(GhostRounds, int);
+
 protected:
   vtkPointSetSurfaceProjection();
   ~vtkPointSetSurfaceProjection() override;
@@ -125,8 +148,10 @@ protected:
 
 #ifndef __VTK_WRAP__
   /**
-   * Hook for subclasses, called once per update before the per-point loop, with the prepared
-   * surface and the number of start points (to validate parameters, size per-point storage).
+   * Hook for subclasses, called before the per-point loop with the prepared surface and the
+   * number of start points (to validate parameters, size per-point storage). With ghost points
+   * it is called again before each later round, with that round's surface: per-point storage of
+   * the same size must then be kept (only some points are projected again).
    * Return false (after vtkErrorMacro) to fail the update. The default does nothing.
    */
   virtual bool BeginProjection(const pss::SurfaceDefinition& surface, vtkIdType numberOfStarts);
@@ -153,6 +178,8 @@ protected:
   double MaxTravel = 1000.0;
   bool SeekMaxima = false;
   bool GenerateProjectionLines = false;
+  double GhostMargin = 0.0;
+  int GhostRounds = 0;
 
 private:
   vtkPointSetSurfaceProjection(const vtkPointSetSurfaceProjection&) = delete;

@@ -27,6 +27,14 @@ and every vertex and its arrays are bitwise those of the one-process mesh. Cases
             limit, see check_unreadable (no hang; one process refuses, MPI ranks do not)
   empty     bad input: no cloud point on any rank; every rank must fail with the same error
   zeroh     bad input: AutomaticScale off and h = 0; every rank must fail with the same error
+  ghost-*   GhostMargin > 0 (ghost points instead of the gathered cloud; projection and classifier
+            only; h = 0.13 given): ghost-tiled as tiled with margin 4; ghost-narrow margin 0.25, so
+            that projections leave the first box and later rounds must finish them (asserted: a
+            rank takes more than one round); ghost-rank0 the cloud on rank 0 only and start points
+            on every rank; ghost-autoh the automatic h, refused alike on every rank. Their arrays
+            must equal one process's to rounding: integers identical, positions and displacements
+            within max(1e-9 h, 4 ulp), angles (degrees, through acos) within 1e-5, other doubles
+            within 1e-9 relative (the largest differences are printed)
 For every case that runs, the skipped points are reported the same way: each rank warns of the
 same number of NaN/Inf cloud points as one process (they are counted in the gathered cloud), and
 the ranks' warnings about their own NaN/Inf start or sample points add up to one process's.
@@ -61,6 +69,10 @@ problems = []
 POINT_FILTERS = ("projection", "classifier", "sampler")  # outputs: points with GlobalPointIds
 CONCATENATED = ("glyphs", "fits")  # the energy glyphs' two outputs: rank by rank, in sample order
 FILTERS = POINT_FILTERS + ("grid", "glyphs", "mesh")  # grid: the sampler's own image, split by extent
+GHOST_FILTERS = ("projection", "classifier")  # what runs with GhostMargin > 0
+GHOST_H = 0.13  # about the automatic h of the case's sphere, given (ghost runs refuse the automatic one)
+ERRORS = {"empty": "the point cloud is empty", "zeroh": "invalid surface parameters",
+          "ghost-autoh": "the automatic scale samples the whole cloud"}
 
 
 def write_pieces(directory, name, xyz, piece_of, pieces):
@@ -145,6 +157,25 @@ def make_case(directory):
         case["readable_points"] = int(np.isin(slabs(xyz, args.np), unreadable, invert=True).sum())
     elif args.case == "empty":
         case["cloud"] = write_pieces(directory, "cloud", xyz[:0], np.zeros(0, dtype=np.int64), args.np)
+    elif args.case.startswith("ghost-"):
+        case["surface"] = {"AutomaticScale": 0, "ScaleFactor": GHOST_H}
+        case["ghost_margin"] = 0.25 if args.case == "ghost-narrow" else 4.0
+        starts = 1.3 * rng.uniform(-1, 1, size=(600, 3))
+        if args.case == "ghost-tiled":
+            xyz[[7, 1500]] = [[np.nan, 0, 0], [0, np.inf, 0]]
+            case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
+            starts[[3, 400]] = [[np.nan, 1, 1], [-np.inf, 0, 0]]
+            case["starts"] = write_pieces(directory, "starts", starts, slabs(starts, args.np - 1), args.np - 1)
+        elif args.case == "ghost-narrow":
+            case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
+        elif args.case == "ghost-rank0":
+            case["cloud"] = write_pieces(directory, "cloud", xyz, np.zeros(n, dtype=np.int64), 1)
+            case["starts"] = write_pieces(directory, "starts", starts, slabs(starts, args.np), args.np)
+        elif args.case == "ghost-autoh":
+            case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
+            case["surface"] = {}
+        else:
+            sys.exit("unknown case %s" % args.case)
     elif args.case == "zeroh":
         case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
         case["surface"] = {"AutomaticScale": 0, "ScaleFactor": 0.0}
@@ -294,8 +325,9 @@ def compare_mesh(directory):
             "mesh", len(seen), len(offsets) - 1, len(want) - 1), flush=True)
 
 
-def compare(directory, name, h):
-    """The ranks' outputs of filter `name` against the one-process output (h: the one-process h)."""
+def compare(directory, name, h, ghost=False):
+    """The ranks' outputs of filter `name` against the one-process output (h: the one-process h;
+    ghost: a run with ghost points, equal to rounding)."""
     serial = read(output_path(directory, "serial", name, 0))
     pieces = [read(output_path(directory, "parallel", name, r)) for r in range(args.np)]
     n = serial.GetNumberOfPoints()
@@ -319,12 +351,30 @@ def compare(directory, name, h):
         return
     order = np.argsort(ids)
     bitwise = True
+    largest = {}
     for key, a in want.items():
         if key not in got:
             problems.append("%s: array %s missing from the distributed output" % (name, key))
             continue
         b = got[key][order]
-        if a.dtype.kind == "f":
+        if a.dtype.kind == "f" and ghost:
+            if key in ("Points", "Displacement"):
+                tol = np.maximum(1e-9 * h, 4 * np.spacing(np.abs(a)))
+            elif "Angle" in key:
+                tol = np.full(a.shape, 1e-5)
+            else:
+                tol = np.maximum(1e-9 * np.abs(a), 1e-300)
+            same = (a == b) | (np.isnan(a) & np.isnan(b))  # Inf starts stay where they are
+            with np.errstate(invalid="ignore"):
+                diff = np.where(same, 0.0, np.abs(a - b))
+            bad = ~(same | (diff <= tol))
+            bitwise = bitwise and same_bits(a, b)
+            if bad.any():
+                problems.append("%s: %s differs beyond rounding at %d values (largest %g)"
+                                % (name, key, int(bad.sum()), float(np.nanmax(diff))))
+            elif not same_bits(a, b):
+                largest[key] = float(np.max(diff))
+        elif a.dtype.kind == "f":
             if not same_bits(a, b):
                 bitwise = False
                 tol = np.maximum(1e-9 * h, 4 * np.spacing(np.abs(a)))
@@ -336,6 +386,9 @@ def compare(directory, name, h):
             problems.append("%s: %s differs at %d values" % (name, key, int((a != b).sum())))
     print("ok   %-10s %d points, %d arrays, h = %.17g, %s" % (
         name, n, len(want) - 1, h, "bitwise equal" if bitwise else "positions within tolerance"), flush=True)
+    if largest:
+        print("     %s: largest differences %s" % (name, ", ".join("%s %.3g" % kv for kv in sorted(largest.items()))),
+              flush=True)
 
 
 # One line of VTK's log: the rank (no number in one process), then the message ("vtkClass (0x...): text").
@@ -421,17 +474,32 @@ def check_unreadable(directory, serial_log, parallel_log, case):
               "readable points once each" % (case["unreadable"], len(FILTERS), len(ids)), flush=True)
 
 
-def check_same_error(serial_log, parallel_log, message):
-    """Every rank reports message from the same filters, in the same order, as one process."""
+def check_ghost_rounds(parallel_log):
+    """The rounds each rank's projection took (printed by the worker): ghost-narrow must need more than one."""
+    rounds = {int(r): int(k) for r, f, k in re.findall(r"rank (\d+): (\w+) ghost rounds (\d+)", parallel_log)
+              if f == "projection"}
+    print("ok   ghost rounds of the projection by rank: %r" % sorted(rounds.items()), flush=True)
+    if not rounds or min(rounds.values()) < 1:  # ranks without start points have no output to say it
+        problems.append("ghost rounds reported by ranks %r" % rounds)
+    elif args.case == "ghost-narrow" and max(rounds.values()) < 2:
+        problems.append("ghost-narrow: no projection needed a second round (%r): the case tests nothing" % rounds)
+
+
+def check_same_error(parallel_log, message, filters, serial_log=None):
+    """Every rank reports message from the same filters, in the same order, as one process (or,
+    without serial_log: once from each of filters)."""
     def failing(log):
         by_rank = {}
         for rank, cls, text in log_messages(log):
             if message in text:
                 by_rank.setdefault(rank, []).append(cls)
         return by_rank
-    want = failing(serial_log).get(0, [])
-    if len(want) != len(FILTERS):
-        problems.append("one process: %d errors containing %r, expected %d" % (len(want), message, len(FILTERS)))
+    if serial_log is None:
+        want = ["vtkPointSetSurface" + {"projection": "Projection", "classifier": "DomainClassifier"}[f] for f in filters]
+    else:
+        want = failing(serial_log).get(0, [])
+    if len(want) != len(filters):
+        problems.append("one process: %d errors containing %r, expected %d" % (len(want), message, len(filters)))
     got = failing(parallel_log)
     for r in range(args.np):
         if got.get(r, []) != want:
@@ -449,19 +517,27 @@ def main():
     serial_log = run([args.pvbatch] + common + ["--out", "serial"], "one process")
     parallel_log = run([args.mpiexec, "--oversubscribe", "-np", str(args.np), args.pvbatch, "--symmetric"]
                        + common + ["--out", "parallel"], "np %d" % args.np)
-    if args.case in ("empty", "zeroh"):
-        message = "the point cloud is empty" if args.case == "empty" else "invalid surface parameters"
-        for name in FILTERS:
+    with open(os.path.join(directory, "case.json")) as f:
+        case = json.load(f)
+    ghost = "ghost_margin" in case
+    filters = GHOST_FILTERS if ghost else FILTERS
+    if args.case in ERRORS:
+        message = ERRORS[args.case]
+        for name in filters:
             for r in range(args.np):
                 if read(output_path(directory, "parallel", name, r)).GetNumberOfPoints():
                     problems.append("%s: rank %d has output on bad input" % (name, r))
         before = len(problems)
-        check_same_error(serial_log, parallel_log, message)
+        check_same_error(parallel_log, message, filters, serial_log if not ghost else None)
         if len(problems) == before:
-            print("ok   every rank failed with %r in each of the %d filters, as one process" % (message, len(FILTERS)))
+            print("ok   every rank failed with %r in each of the %d filters%s" % (
+                message, len(filters), "" if ghost else ", as one process"))
+    elif ghost:
+        check_skipped_reports(serial_log, parallel_log, case)
+        for name in GHOST_FILTERS:
+            compare(directory, name, GHOST_H, ghost=True)
+        check_ghost_rounds(parallel_log)
     else:
-        with open(os.path.join(directory, "case.json")) as f:
-            case = json.load(f)
         if "unreadable" in case:
             check_unreadable(directory, serial_log, parallel_log, case)
             return report()
