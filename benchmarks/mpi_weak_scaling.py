@@ -13,6 +13,10 @@ Each rank times the projection's update after the reader's (a barrier before and
 clock, and the process's CPU time, which a machine shared with other work slows less), and a
 second projection of one start point over the same cloud: its time is the gather of the whole
 cloud plus the k-d tree built over it, the part every rank repeats with today's replicated cloud.
+With --ghost-margin M > 0 the projection exchanges ghost points instead of gathering the cloud
+(GhostMargin): each rank also reports the other ranks' points it held (GhostPoints) and the rounds
+it took, and the one-start projection measures only a tiny exchange (its row is then not the
+overhead; the ghost points are).
 Rank 0 prints one line per rank and a summary; the pieces are written on first use.
 """
 import argparse
@@ -34,6 +38,7 @@ parser.add_argument("--bunny", required=True)
 parser.add_argument("--workdir", required=True)
 parser.add_argument("--mode", choices=("weak", "split"), default="weak")
 parser.add_argument("--h", type=float, default=0.001)
+parser.add_argument("--ghost-margin", type=float, default=0.0)
 args = parser.parse_args()
 
 pvs.LoadPlugin(args.plugin, remote=False, ns=globals())
@@ -88,7 +93,8 @@ controller.Barrier()
 cloud = pvs.OpenDataFile(cloud_file)
 cloud.UpdatePipeline()
 local = cloud.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints()
-surface = dict(Variant="Center of Mass", Procedure="Plane", AutomaticScale=0, ScaleFactor=args.h)
+surface = dict(Variant="Center of Mass", Procedure="Plane", AutomaticScale=0, ScaleFactor=args.h,
+               GhostMargin=args.ghost_margin)
 
 
 def timed(proxy):
@@ -103,26 +109,36 @@ def timed(proxy):
 
 projection = PointSetSurfaceProjection(Input=cloud, **surface)
 project_seconds, project_cpu = timed(projection)
-projected = projection.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPoints()
+output = projection.GetClientSideObject().GetOutputDataObject(0)
+projected = output.GetNumberOfPoints()
+ghost_points = output.GetFieldData().GetArray("GhostPoints")
+ghost_rounds = output.GetFieldData().GetArray("GhostRounds")
+ghost_points = ghost_points.GetValue(0) if ghost_points else 0
+ghost_rounds = ghost_rounds.GetValue(0) if ghost_rounds else 0
 # A one-file reader gives its point to rank 0 and nothing to the others.
 overhead = PointSetSurfaceProjection(Input=cloud, StartPoints=pvs.OpenDataFile(start_file), **surface)
 overhead_seconds, overhead_cpu = timed(overhead)
 
 row = vtkDoubleArray()
-row.SetNumberOfValues(6)
-for i, value in enumerate((projected, project_seconds, overhead_seconds, local, project_cpu, overhead_cpu)):
+row.SetNumberOfValues(8)
+for i, value in enumerate((projected, project_seconds, overhead_seconds, local, project_cpu, overhead_cpu,
+                           ghost_points, ghost_rounds)):
     row.SetValue(i, value)
 gathered = vtkDoubleArray()
 controller.Gather(row, gathered, 0)
 if rank == 0:
-    table = vtk_to_numpy(gathered).reshape(ranks, 6)
+    table = vtk_to_numpy(gathered).reshape(ranks, 8)
     total = 0
-    print("mode %s, np %d, %d piece(s), h = %g m, backend %s, %d thread(s) per rank"
-          % (args.mode, ranks, pieces, args.h, vtkSMPTools.GetBackend(), vtkSMPTools.GetEstimatedNumberOfThreads()))
-    for r, (n, seconds, over, cloud_points, cpu, over_cpu) in enumerate(table):
+    print("mode %s, np %d, %d piece(s), h = %g m, ghost margin %g h, backend %s, %d thread(s) per rank"
+          % (args.mode, ranks, pieces, args.h, args.ghost_margin, vtkSMPTools.GetBackend(),
+             vtkSMPTools.GetEstimatedNumberOfThreads()))
+    for r, (n, seconds, over, cloud_points, cpu, over_cpu, ghosts, rounds) in enumerate(table):
         total += n
         print("rank %d: %d cloud points read, %d projected in %.3f s (%.3f s CPU) = %.0f points/s (%.0f per CPU s); "
-              "gather + index %.3f s (%.3f s CPU)" % (r, cloud_points, n, seconds, cpu, n / seconds, n / cpu, over, over_cpu))
+              "gather + index %.3f s (%.3f s CPU)%s" % (
+                  r, cloud_points, n, seconds, cpu, n / seconds, n / cpu, over, over_cpu,
+                  "; %d ghost points (%.1f%% of its own), %d round(s)" % (ghosts, 100.0 * ghosts / max(cloud_points, 1),
+                                                                         rounds) if args.ghost_margin > 0 else ""))
     wall = table[:, 1].max()
     print("summary: %d points in %.3f s (slowest rank), %.0f points/s per rank, %.0f per CPU second per rank; "
           "gather + index %.3f s (%.0f%% of the slowest rank's time)" % (

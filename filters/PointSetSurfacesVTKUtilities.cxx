@@ -254,7 +254,7 @@ bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMult
 }
 
 bool PrepareGhostSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
-  vtkMultiProcessController* controller, const GhostRun& run, const double lo[3], const double hi[3])
+  vtkMultiProcessController* controller, GhostRun& run, const double lo[3], const double hi[3])
 {
   if (!surface)
   {
@@ -330,6 +330,7 @@ bool PrepareGhostSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
   {
     return true; // this rank asked for nothing: its surface stays as it is
   }
+  run.Ghosts = static_cast<vtkIdType>((local.size() - run.Own.size()) / 3);
   // The box is complete; a side beyond the cloud's bounds is open (no point lies past it).
   const double inf = std::numeric_limits<double>::infinity();
   double regionLo[3];

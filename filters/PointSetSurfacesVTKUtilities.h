@@ -103,6 +103,7 @@ struct GhostRun
   double Centroid[3] = { 0.0, 0.0, 0.0 };
   int Dimension = 3;
   std::vector<double> Own; ///< x, y, z of this rank's finite cloud points
+  vtkIdType Ghosts = 0;    ///< other ranks' points the last PrepareGhostSurface() received
 };
 
 /**
@@ -122,7 +123,7 @@ bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMult
  * @p algorithm.
  */
 bool PrepareGhostSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
-  vtkMultiProcessController* controller, const GhostRun& run, const double lo[3], const double hi[3]);
+  vtkMultiProcessController* controller, GhostRun& run, const double lo[3], const double hi[3]);
 
 /// Unless @p pd has global ids already, gives its @p n tuples the global ids first, first + 1, ...
 /// as `GlobalPointIds` (the distributed filters' outputs, gathered, then match one process's).

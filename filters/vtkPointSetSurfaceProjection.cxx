@@ -355,6 +355,9 @@ int vtkPointSetSurfaceProjection::RequestData(
     auto rounds = pss_vtk::NewArray<vtkIntArray>("GhostRounds", 1, 1);
     rounds->SetValue(0, this->GhostRounds);
     output->GetFieldData()->AddArray(rounds);
+    auto count = pss_vtk::NewArray<vtkIdTypeArray>("GhostPoints", 1, 1);
+    count->SetValue(0, run.Ghosts);
+    output->GetFieldData()->AddArray(count);
   }
   if (!this->AddPointArrays(starts, outPD))
   {

@@ -134,7 +134,8 @@ public:
 
   /// The rounds of ghost exchange the last distributed update with GhostMargin > 0 took (1: no
   /// projection needed more ghost points; 0 otherwise). Also the output's field data
-  /// `GhostRounds` on ranks with start points.
+  /// `GhostRounds` on ranks with start points, beside `GhostPoints`: the other ranks' points the
+  /// rank held in its last round (its memory overhead).
   vtkGetMacro(GhostRounds, int);
 
 protected:
