@@ -198,14 +198,96 @@ vtkSmartPointer<vtkPolyData> GatherCloud(
   return whole;
 }
 
+namespace
+{
+
+// The centroid of the finite points of every rank as one process computes it: one sum over the
+// points in rank order, each rank carrying on from the previous rank's partial sum (a chain of
+// N - 1 messages), so the result is bitwise the one-process PointIndex::centroid().
+void ChainedCentroid(vtkMultiProcessController* controller, const GhostRun& run, double count, double centroid[3])
+{
+  constexpr int tag = 916016;
+  const int ranks = controller->GetNumberOfProcesses();
+  const int me = controller->GetLocalProcessId();
+  double sum[3] = { 0.0, 0.0, 0.0 };
+  if (me > 0)
+  {
+    controller->Receive(sum, 3, me - 1, tag);
+  }
+  const int axes = run.Dimension == 2 ? 2 : 3; // PointIndex sums 2D points with z = 0
+  for (std::size_t i = 0; i < run.Own.size(); i += 3)
+  {
+    for (int a = 0; a < axes; ++a)
+    {
+      sum[a] += run.Own[i + static_cast<std::size_t>(a)];
+    }
+  }
+  if (me + 1 < ranks)
+  {
+    controller->Send(sum, 3, me + 1, tag);
+  }
+  controller->Broadcast(sum, 3, ranks - 1);
+  for (int a = 0; a < 3; ++a)
+  {
+    centroid[a] = sum[a] / count;
+  }
+}
+
+// The automatic h of the one-process run: the finite points gathered on rank 0 in rank order
+// (the order one process indexes them in), its index and estimateScale there, broadcast. Rank 0
+// holds the whole cloud meanwhile. Returns 0 on every rank when the estimate is 0, -1 when the
+// cloud is too large for one message.
+double RootAutomaticScale(vtkMultiProcessController* controller, vtkPointSetSurface* surface, const GhostRun& run)
+{
+  const int ranks = controller->GetNumberOfProcesses();
+  const vtkIdType length = static_cast<vtkIdType>(run.Own.size());
+  std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks));
+  controller->AllGather(&length, lengths.data(), 1);
+  std::vector<vtkIdType> offsets(static_cast<std::size_t>(ranks));
+  vtkIdType total = 0;
+  for (int r = 0; r < ranks; ++r)
+  {
+    offsets[static_cast<std::size_t>(r)] = total;
+    total += lengths[static_cast<std::size_t>(r)];
+  }
+  if (total > vtkIdType(INT_MAX))
+  {
+    return -1.0;
+  }
+  const bool root = controller->GetLocalProcessId() == 0;
+  std::vector<double> all(root ? static_cast<std::size_t>(total) : 0);
+  controller->GatherV(run.Own.data(), all.data(), length, lengths.data(), offsets.data(), 0);
+  double h = 0.0;
+  if (root)
+  {
+    std::vector<pss::Vec3> points(all.size() / 3);
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      points[i] = pss::Vec3(all[3 * i], all[3 * i + 1], all[3 * i + 2]);
+    }
+    all = std::vector<double>();
+    const pss::PointIndex index(std::move(points), run.Dimension);
+    h = pss::estimateScale(index, surface->GetScaleNeighbors(), surface->GetScaleMultiplier());
+  }
+  controller->Broadcast(&h, 1, 0);
+  return h;
+}
+
+} // namespace
+
 bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMultiProcessController* controller,
   vtkPointSet* cloud, GhostRun& run)
 {
+  if (!surface)
+  {
+    vtkErrorWithObjectMacro(algorithm, << "no vtkPointSetSurface is set");
+    return false;
+  }
   run.Own.clear();
   const vtkIdType n = cloud ? cloud->GetNumberOfPoints() : 0;
   run.Own.reserve(static_cast<std::size_t>(3 * n));
-  // Counts (all, finite), coordinate sums, then bounds: one reduction each.
-  double sums[5] = { static_cast<double>(n), 0.0, 0.0, 0.0, 0.0 };
+  // Counts (all, finite) and bounds: one reduction each.
+  double counts[2] = { static_cast<double>(n), 0.0 };
   double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
   double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   for (vtkIdType i = 0; i < n; ++i)
@@ -217,16 +299,15 @@ bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMult
       continue;
     }
     run.Own.insert(run.Own.end(), p, p + 3);
-    sums[1] += 1.0;
+    counts[1] += 1.0;
     for (int a = 0; a < 3; ++a)
     {
-      sums[2 + a] += p[a];
       lo[a] = std::min(lo[a], p[a]);
       hi[a] = std::max(hi[a], p[a]);
     }
   }
-  double total[5];
-  controller->AllReduce(sums, total, 5, vtkCommunicator::SUM_OP);
+  double total[2];
+  controller->AllReduce(counts, total, 2, vtkCommunicator::SUM_OP);
   controller->AllReduce(lo, run.Lo, 3, vtkCommunicator::MIN_OP);
   controller->AllReduce(hi, run.Hi, 3, vtkCommunicator::MAX_OP);
   if (total[0] == 0.0 || total[1] == 0.0)
@@ -236,14 +317,35 @@ bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMult
                                                            : "the point cloud has no point with finite coordinates"));
     return false;
   }
-  for (int a = 0; a < 3; ++a)
-  {
-    run.Centroid[a] = total[2 + a] / total[1];
-  }
-  const int asked = surface ? surface->GetDimension() : 0;
+  const int asked = surface->GetDimension();
   run.Dimension = asked == vtkPointSetSurface::DIMENSION_AUTO
     ? pss::detectDimension(pss::Vec3(run.Lo[0], run.Lo[1], run.Lo[2]), pss::Vec3(run.Hi[0], run.Hi[1], run.Hi[2]))
     : asked;
+  ChainedCentroid(controller, run, total[1], run.Centroid);
+  run.H = surface->GetScaleFactor();
+  if (surface->GetAutomaticScale() && (run.Dimension == 2 || run.Dimension == 3))
+  {
+    run.H = RootAutomaticScale(controller, surface, run);
+    if (!(run.H > 0.0))
+    {
+      if (run.H < 0.0)
+      {
+        vtkErrorWithObjectMacro(algorithm, << "cannot define the surface: the automatic scale needs the whole cloud ("
+                                           << static_cast<vtkIdType>(total[1])
+                                           << " points) on rank 0, more than one MPI message holds (2^31 - 1 "
+                                              "coordinates): turn AutomaticScale off and set ScaleFactor");
+      }
+      else
+      {
+        vtkErrorWithObjectMacro(algorithm, << "cannot define the surface: the automatic scale is 0: the "
+                                           << static_cast<vtkIdType>(total[1]) << " finite points have fewer than "
+                                           << surface->GetScaleNeighbors() + 1
+                                           << " distinct positions around most points (duplicates?); set "
+                                              "ScaleFactor and turn AutomaticScale off");
+      }
+      return false;
+    }
+  }
   const double skipped = total[0] - total[1];
   if (skipped > 0.0)
   {
@@ -340,7 +442,7 @@ bool PrepareGhostSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
     regionLo[a] = lo[a] <= run.Lo[a] ? -inf : lo[a];
     regionHi[a] = hi[a] >= run.Hi[a] ? inf : hi[a];
   }
-  if (!surface->PreparePiece(local, run.Dimension, regionLo, regionHi))
+  if (!surface->PreparePiece(local, run.Dimension, regionLo, regionHi, run.H))
   {
     vtkErrorWithObjectMacro(algorithm, << "cannot define the surface: " << surface->GetLastError());
     return false;

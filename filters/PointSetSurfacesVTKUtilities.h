@@ -93,11 +93,12 @@ vtkSmartPointer<vtkPolyData> GatherCloud(
 
 /**
  * What the ranks of a run with ghost points (GhostMargin > 0) share, from BeginGhostRun(): the
- * finite cloud's bounds, count and centroid over every rank, its dimension, and this rank's own
- * finite cloud points, which it sends to the ranks that ask for them.
+ * finite cloud's bounds and centroid over every rank, its dimension and h (all as one process
+ * computes them), and this rank's own finite cloud points, which it sends to the ranks that ask.
  */
 struct GhostRun
 {
+  double H = 0.0;
   double Lo[3] = { 0.0, 0.0, 0.0 };
   double Hi[3] = { 0.0, 0.0, 0.0 };
   double Centroid[3] = { 0.0, 0.0, 0.0 };
@@ -107,10 +108,13 @@ struct GhostRun
 };
 
 /**
- * Collective over @p controller: the GhostRun of every rank's @p cloud. On an empty cloud (or one
- * with no finite point) on every rank, every rank reports the one-process error and returns
- * false; otherwise it warns, on every rank, of the cloud points left out for NaN/Inf as one
- * process does.
+ * Collective over @p controller: the GhostRun of every rank's @p cloud. The centroid is summed in
+ * rank order along a chain of the ranks, so it is bitwise the one-process centroid; the automatic
+ * h (AutomaticScale on) is the one-process estimate, made on rank 0 over the finite points
+ * gathered there for the purpose (so rank 0 holds the whole cloud for a moment). On an empty
+ * cloud (or one with no finite point, or an automatic h of 0) every rank reports the one-process
+ * error and returns false; otherwise it warns, on every rank, of the cloud points left out for
+ * NaN/Inf as one process does.
  */
 bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMultiProcessController* controller,
   vtkPointSet* cloud, GhostRun& run);

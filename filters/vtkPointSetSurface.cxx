@@ -84,7 +84,7 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
   {
     return this->Fail(std::string("invalid surface parameters: ") + e.what());
   }
-  if (!this->Build(std::move(index)))
+  if (!this->Build(std::move(index), this->AutomaticScale ? 0.0 : this->ScaleFactor))
   {
     return false;
   }
@@ -95,15 +95,10 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
 }
 
 bool vtkPointSetSurface::PreparePiece(
-  const std::vector<double>& points, int dimension, const double lo[3], const double hi[3])
+  const std::vector<double>& points, int dimension, const double lo[3], const double hi[3], double h)
 {
   this->PreparedCloud = nullptr;
   // The parameters first, so that every rank fails alike whatever its piece holds.
-  if (this->AutomaticScale)
-  {
-    return this->Fail("the automatic scale samples the whole cloud, which no rank holds here: turn "
-                      "AutomaticScale off and set ScaleFactor (or let every rank gather the whole cloud)");
-  }
   if (dimension != 2 && dimension != 3)
   {
     return this->Fail("Dimension must be Auto (0), 2 or 3, not 1");
@@ -111,7 +106,7 @@ bool vtkPointSetSurface::PreparePiece(
   std::unique_ptr<pss::PointIndex> index;
   try
   {
-    this->Parameters(this->ScaleFactor).validate();
+    this->Parameters(h).validate();
     if (points.empty())
     {
       // Nothing to define: the caller waits for ghost points.
@@ -132,7 +127,7 @@ bool vtkPointSetSurface::PreparePiece(
   {
     return this->Fail(std::string("invalid surface parameters: ") + e.what());
   }
-  if (!this->Build(std::move(index)))
+  if (!this->Build(std::move(index), h))
   {
     return false;
   }
@@ -150,7 +145,7 @@ pss::SurfaceParameters vtkPointSetSurface::Parameters(double h) const
   return params;
 }
 
-bool vtkPointSetSurface::Build(std::unique_ptr<pss::PointIndex> index)
+bool vtkPointSetSurface::Build(std::unique_ptr<pss::PointIndex> index, double h)
 {
   this->SkippedPoints = static_cast<vtkIdType>(index->skippedCount());
   if (index->empty())
@@ -159,8 +154,8 @@ bool vtkPointSetSurface::Build(std::unique_ptr<pss::PointIndex> index)
   }
   try
   {
-    pss::SurfaceParameters params = this->Parameters(this->ScaleFactor);
-    if (this->AutomaticScale)
+    pss::SurfaceParameters params = this->Parameters(h);
+    if (this->AutomaticScale && !(h > 0.0))
     {
       params.h = pss::estimateScale(*index, this->ScaleNeighbors, this->ScaleMultiplier);
       if (!(params.h > 0.0))

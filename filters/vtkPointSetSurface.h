@@ -173,15 +173,17 @@ public:
 
   /**
    * Prepare() for one rank of a distributed run that holds only part of the cloud: @p points
-   * (x, y, z of each) are its piece plus ghost points, every cloud point inside the box [@p lo, @p hi] (sides at
-   * +-inf are open) and some outside; @p dimension is the whole cloud's (2 or 3). Evaluations
-   * that read beyond the box are flagged (pss::Workspace::leftCompleteRegion). The automatic
-   * scale samples the whole cloud, so it is refused here: AutomaticScale must be off. Checks the
-   * parameters before the points, so that every rank fails alike whatever its piece holds; with
-   * no point at all it then succeeds without a definition (GetDefinition() is nullptr: every
-   * evaluation on this rank needs ghost points first). Never reuses an earlier preparation.
+   * (x, y, z of each) are its piece plus ghost points, every cloud point inside the box [@p lo,
+   * @p hi] (sides at +-inf are open) and some outside; @p dimension and @p h are the whole
+   * cloud's (the caller computes the automatic h over all ranks; ScaleFactor is not read).
+   * Evaluations that read beyond the box are flagged (pss::Workspace::leftCompleteRegion).
+   * Checks the parameters before the points, so that every rank fails alike whatever its piece
+   * holds; with no point at all it then succeeds without a definition (GetDefinition() is
+   * nullptr: every evaluation on this rank needs ghost points first). Never reuses an earlier
+   * preparation.
    */
-  bool PreparePiece(const std::vector<double>& points, int dimension, const double lo[3], const double hi[3]);
+  bool PreparePiece(
+    const std::vector<double>& points, int dimension, const double lo[3], const double hi[3], double h);
 #endif
 
 protected:
@@ -205,8 +207,8 @@ private:
   bool Fail(const std::string& message);
   /// The core's parameters at scale @p h.
   pss::SurfaceParameters Parameters(double h) const;
-  /// Takes @p index and builds the definition at h (ScaleFactor, or the automatic scale).
-  bool Build(std::unique_ptr<pss::PointIndex> index);
+  /// Takes @p index and builds the definition at @p h (<= 0: the automatic scale over it).
+  bool Build(std::unique_ptr<pss::PointIndex> index, double h);
 
   std::unique_ptr<pss::PointIndex> Index;
   std::unique_ptr<pss::SurfaceDefinition> Definition;

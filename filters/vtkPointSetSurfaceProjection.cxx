@@ -202,14 +202,18 @@ int vtkPointSetSurfaceProjection::RequestData(
   std::vector<std::uint32_t> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0u);
   pss_vtk::GhostRun run;
-  double margin = this->GhostMargin * (this->Surface ? this->Surface->GetScaleFactor() : 0.0);
+  double margin = 0.0;
   if (ghosts)
   {
+    if (!pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run))
+    {
+      return 0;
+    }
+    margin = this->GhostMargin * run.H;
     double lo[3];
     double hi[3];
     GrownBounds(startPoints, order, margin, lo, hi);
-    if (!pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run) ||
-      !pss_vtk::PrepareGhostSurface(this, this->Surface, controller, run, lo, hi))
+    if (!pss_vtk::PrepareGhostSurface(this, this->Surface, controller, run, lo, hi))
     {
       return 0;
     }

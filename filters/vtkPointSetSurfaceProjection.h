@@ -36,9 +36,11 @@
  * > 0 each rank holds its own cloud points plus the other ranks' points inside the box of its
  * start points grown by GhostMargin * h; a projection whose neighbourhoods reach beyond that box
  * is flagged by the core and projected again in a next round with a box grown by twice the
- * margin, until none is (at worst the box holds the whole cloud). Results then equal the
+ * margin, until none is (at worst the box holds the whole cloud). h, the centroid that orients
+ * n and the dimension are the one-process values (the automatic h is estimated on rank 0, which
+ * holds the whole cloud for that moment: set ScaleFactor to avoid it); results then equal the
  * one-process run's to rounding, not bitwise (neighbours are summed in another order; see the
- * README), and the automatic scale is refused (it samples the whole cloud): set ScaleFactor.
+ * README).
  *
  * @sa vtkPointSetSurface vtkPointSetSurfaceDomainClassifier
  */
@@ -127,6 +129,7 @@ public:
    * every rank; > 0 exchanges only ghost points, within this many h of the box of a rank's start
    * points, for memory that shrinks with the number of ranks. A margin too small costs extra
    * rounds, never accuracy. 4 (the kernel's support of 3 h plus 1 h of travel) is a good start.
+   * With the automatic h, rank 0 gathers the whole cloud once to estimate it.
    */
   vtkSetClampMacro(GhostMargin, double, 0.0, 1e6);
   vtkGetMacro(GhostMargin, double);
