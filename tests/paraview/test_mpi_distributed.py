@@ -31,7 +31,8 @@ and every vertex and its arrays are bitwise those of the one-process mesh. Cases
             only; h = 0.13 given but in ghost-autoh): ghost-tiled as tiled with margin 4; ghost-narrow margin 0.25, so
             that projections leave the first box and later rounds must finish them (asserted: a
             rank takes more than one round); ghost-rank0 the cloud on rank 0 only and start points
-            on every rank; ghost-autoh the automatic h (estimated on rank 0: identical). Their arrays
+            on every rank; ghost-offset and ghost-emptyrank as offset and emptyrank; ghost-autoh the
+            automatic h (estimated on rank 0: identical). Their arrays
             must equal one process's to rounding: integers identical, positions and displacements
             within max(1e-9 h, 4 ulp), angles (degrees, through acos) within 1e-5, other doubles
             within 1e-9 relative (the largest differences are printed)
@@ -170,6 +171,12 @@ def make_case(directory):
         elif args.case == "ghost-rank0":
             case["cloud"] = write_pieces(directory, "cloud", xyz, np.zeros(n, dtype=np.int64), 1)
             case["starts"] = write_pieces(directory, "starts", starts, slabs(starts, args.np), args.np)
+        elif args.case == "ghost-offset":
+            xyz[[11]] = [[np.nan, np.nan, np.nan]]
+            xyz += 5e6
+            case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
+        elif args.case == "ghost-emptyrank":
+            case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np - 1), args.np - 1)
         elif args.case == "ghost-autoh":
             xyz[[5, 2000]] = [[np.inf, 0, 0], [0, 0, np.nan]]
             case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
