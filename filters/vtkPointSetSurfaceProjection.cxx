@@ -256,12 +256,18 @@ int vtkPointSetSurfaceProjection::RequestData(
   for (int round = 1;; ++round)
   {
     const pss::SurfaceDefinition* surface = this->Surface->GetDefinition();
-    if (surface && !order.empty())
+    bool failed = false; // with ghosts a rank that fails still takes part in the round's reduction
+    if (surface && !order.empty() && !this->BeginProjection(*surface, n))
     {
-      if (!this->BeginProjection(*surface, n))
+      if (!ghosts)
       {
         return 0;
       }
+      failed = true;
+      order.clear();
+    }
+    if (surface && !order.empty())
+    {
       const pss::PointIndex& index = *this->Surface->GetIndex();
       pss::Orientation orientation = pss::Orientation::awayFromCentroid(index);
       if (ghosts)
@@ -285,7 +291,7 @@ int vtkPointSetSurfaceProjection::RequestData(
         return 1; // aborted: leave the outputs empty (with ghosts every rank goes on to the end)
       }
     }
-    else
+    else if (ghosts)
     {
       for (std::uint32_t k : order)
       {
@@ -305,10 +311,18 @@ int vtkPointSetSurfaceProjection::RequestData(
         again.push_back(k);
       }
     }
-    vtkIdType local = static_cast<vtkIdType>(again.size());
-    vtkIdType total = 0;
-    controller->AllReduce(&local, &total, 1, vtkCommunicator::SUM_OP);
-    if (total == 0)
+    const vtkIdType local[2] = { static_cast<vtkIdType>(again.size()), failed ? 1 : 0 };
+    vtkIdType total[2] = { 0, 0 };
+    controller->AllReduce(local, total, 2, vtkCommunicator::SUM_OP);
+    if (total[1] > 0)
+    {
+      if (!failed)
+      {
+        vtkErrorMacro(<< "another rank failed to begin its projections (see its error)");
+      }
+      return 0;
+    }
+    if (total[0] == 0)
     {
       break;
     }
