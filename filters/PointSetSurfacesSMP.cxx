@@ -82,4 +82,9 @@ pss::ParallelLoop SMPLoop(vtkAlgorithm* algorithm)
   };
 }
 
+int CoreThreads()
+{
+  return vtkSMPTools::IsParallelScope() ? 1 : std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
+}
+
 }

@@ -41,6 +41,14 @@ bool ParallelFor(vtkAlgorithm* algorithm, vtkIdType n, const std::function<void(
  */
 pss::ParallelLoop SMPLoop(vtkAlgorithm* algorithm);
 
+/**
+ * The thread count for the core's own loops (pss::parallelFor: the index, the automatic scale):
+ * vtkSMPTools' estimate, so that they follow the backend and the count the application set
+ * (Sequential or `pss --threads 1`: one thread), and 1 inside a vtkSMPTools parallel scope, where
+ * the other threads are busy already.
+ */
+int CoreThreads();
+
 }
 
 #endif

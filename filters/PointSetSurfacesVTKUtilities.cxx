@@ -16,6 +16,8 @@
 #include "vtkPointSetSurface.h"
 #include "vtkPolyData.h"
 
+#include "pss/Parallel.h"
+
 #include <algorithm>
 #include <climits>
 #include <cmath>
@@ -27,7 +29,7 @@
 namespace pss_vtk
 {
 
-std::vector<pss::Vec3> ToVectors(vtkPoints* points)
+std::vector<pss::Vec3> ToVectors(vtkPoints* points, int threads)
 {
   std::vector<pss::Vec3> out;
   if (!points)
@@ -36,10 +38,25 @@ std::vector<pss::Vec3> ToVectors(vtkPoints* points)
   }
   const vtkIdType n = points->GetNumberOfPoints();
   out.resize(static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    points->GetPoint(i, out[static_cast<std::size_t>(i)].data());
-  }
+  // Double coordinates (what the readers and sources here produce) are read from the array's
+  // memory directly: a virtual GetPoint per point costs more than the copy itself.
+  vtkDoubleArray* doubles = vtkDoubleArray::FastDownCast(points->GetData());
+  const double* raw = doubles && doubles->GetNumberOfComponents() == 3 ? doubles->GetPointer(0) : nullptr;
+  // Few points stay on this thread: starting threads would cost more than the copy.
+  const int copyThreads = n < (vtkIdType(1) << 14) ? 1 : threads;
+  pss::parallelFor(static_cast<std::size_t>(n), copyThreads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      if (raw)
+      {
+        out[i] = pss::Vec3(raw[3 * i], raw[3 * i + 1], raw[3 * i + 2]);
+      }
+      else
+      {
+        points->GetPoint(static_cast<vtkIdType>(i), out[i].data());
+      }
+    }
+  });
   return out;
 }
 

@@ -29,8 +29,8 @@ class vtkPolyData;
 namespace pss_vtk
 {
 
-/// Coordinates of @p points as core vectors (empty for nullptr).
-std::vector<pss::Vec3> ToVectors(vtkPoints* points);
+/// Coordinates of @p points as core vectors (empty for nullptr), copied on @p threads threads.
+std::vector<pss::Vec3> ToVectors(vtkPoints* points, int threads = 1);
 
 /// A named array of @p tuples tuples with @p components components.
 template <class ArrayT>

@@ -6,6 +6,9 @@
 #include "vtkPoints.h"
 #include "vtkSMPTools.h"
 
+#include "PointSetSurfacesSMP.h"
+#include "PointSetSurfacesVTKUtilities.h"
+
 #include "pss/PointIndex.h"
 #include "pss/SurfaceDefinition.h"
 
@@ -67,18 +70,16 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
   {
     return this->Fail("Dimension must be Auto (0), 2 or 3, not 1");
   }
-  std::vector<pss::Vec3> points(static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    double p[3];
-    cloud->GetPoint(i, p);
-    points[static_cast<std::size_t>(i)] = pss::Vec3(p[0], p[1], p[2]);
-  }
-  const int dimension = this->Dimension == DIMENSION_AUTO ? pss::detectDimension(points) : this->Dimension;
+  // The index is built, and h estimated, on the threads the application gave vtkSMPTools (the
+  // result is the same for every count).
+  const int threads = pss_vtk::CoreThreads();
+  std::vector<pss::Vec3> points = pss_vtk::ToVectors(cloud->GetPoints(), threads);
+  const int dimension =
+    this->Dimension == DIMENSION_AUTO ? pss::detectDimension(points, threads) : this->Dimension;
   std::unique_ptr<pss::PointIndex> index;
   try
   {
-    index = std::make_unique<pss::PointIndex>(std::move(points), dimension);
+    index = std::make_unique<pss::PointIndex>(std::move(points), dimension, threads);
   }
   catch (const std::exception& e)
   {
@@ -120,7 +121,7 @@ bool vtkPointSetSurface::PreparePiece(
     {
       vectors[i] = pss::Vec3(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
     }
-    index = std::make_unique<pss::PointIndex>(std::move(vectors), dimension);
+    index = std::make_unique<pss::PointIndex>(std::move(vectors), dimension, pss_vtk::CoreThreads());
     index->setCompleteRegion(pss::Vec3(lo[0], lo[1], lo[2]), pss::Vec3(hi[0], hi[1], hi[2]));
   }
   catch (const std::exception& e)
@@ -157,7 +158,7 @@ bool vtkPointSetSurface::Build(std::unique_ptr<pss::PointIndex> index, double h)
     pss::SurfaceParameters params = this->Parameters(h);
     if (this->AutomaticScale && !(h > 0.0))
     {
-      params.h = pss::estimateScale(*index, this->ScaleNeighbors, this->ScaleMultiplier);
+      params.h = pss::estimateScale(*index, this->ScaleNeighbors, this->ScaleMultiplier, pss_vtk::CoreThreads());
       if (!(params.h > 0.0))
       {
         std::ostringstream msg;

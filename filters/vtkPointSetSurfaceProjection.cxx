@@ -237,7 +237,9 @@ int vtkPointSetSurfaceProjection::RequestData(
     const pss::PointIndex* index = this->Surface->GetIndex();
     const bool startsAreIndexed = starts == cloud && !controller && index &&
       static_cast<vtkIdType>(index->size() + index->skippedCount()) == n;
-    order = startsAreIndexed ? index->visitingOrder() : pss::spatialOrder(pss_vtk::ToVectors(startPoints));
+    const int threads = pss_vtk::CoreThreads();
+    order = startsAreIndexed ? index->visitingOrder()
+                             : pss::spatialOrder(pss_vtk::ToVectors(startPoints, threads), threads);
   }
   catch (const std::exception& e)
   {

@@ -2,11 +2,14 @@
 #include "pss/PointIndex.h"
 
 #include "pss/NanoflannInternals.h" // nanoflann, and the internals PointIndex reads
+#include "pss/Parallel.h"
 
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <type_traits>
@@ -24,14 +27,90 @@ namespace
 struct CloudAdaptor
 {
   const std::vector<Vec3>* points = nullptr;
+  // The cloud's bounds, already known: nanoflann would otherwise spend a serial pass over every
+  // point finding the same values (min and max are exact, so the tree does not change).
+  const Vec3* boundsMin = nullptr;
+  const Vec3* boundsMax = nullptr;
   std::size_t kdtree_get_point_count() const { return points->size(); }
   double kdtree_get_pt(std::size_t i, std::size_t dim) const { return (*points)[i][static_cast<int>(dim)]; }
   template <class BBox>
-  bool kdtree_get_bbox(BBox&) const
+  bool kdtree_get_bbox(BBox& box) const
   {
-    return false;
+    for (std::size_t d = 0; d < box.size(); ++d)
+    {
+      box[d].low = (*boundsMin)[static_cast<int>(d)];
+      box[d].high = (*boundsMax)[static_cast<int>(d)];
+    }
+    return true;
   }
 };
+
+// Below this many items a loop stays on the calling thread: starting threads would cost more than
+// the loop (small clouds are indexed often, e.g. once per test or per filter update).
+constexpr std::size_t MinParallelItems = std::size_t(1) << 14;
+
+// parallelFor for the index's cheap per-item loops: on one thread when the loop is short.
+void forEachRange(std::size_t n, int threads, const std::function<void(std::size_t, std::size_t)>& body)
+{
+  parallelFor(n, n < MinParallelItems ? 1 : threads, body);
+}
+
+// [0, n) cut into a few contiguous chunks per thread, numbered in index order, for loops whose
+// per-chunk results (counts, histograms, bounds) are then combined in chunk order: a result that
+// depends only on that order is the same for every chunk count. One chunk for one thread.
+struct Chunks
+{
+  Chunks(std::size_t items, int threads)
+    : n(items)
+  {
+    const auto workers = static_cast<std::size_t>(resolveThreadCount(threads));
+    count = workers <= 1 ? 1 : std::clamp<std::size_t>(n / MinParallelItems, 1, 4 * workers);
+  }
+  std::size_t begin(std::size_t c) const { return n * c / count; }
+  /// Calls body(c, begin, end) for every chunk c, each chunk on one thread.
+  template <class Body>
+  void run(int threads, Body&& body) const
+  {
+    parallelFor(count, threads, [&](std::size_t first, std::size_t last) {
+      for (std::size_t c = first; c < last; ++c)
+      {
+        body(c, begin(c), begin(c + 1));
+      }
+    });
+  }
+  std::size_t n = 0;
+  std::size_t count = 1;
+};
+
+// The bounds of the finite points, +inf/-inf when there is none. Chunks are combined as they
+// come: min and max of the same values are the same values in any order (only the sign of a zero
+// may differ, which no caller's arithmetic can see).
+std::pair<Vec3, Vec3> finiteBounds(const std::vector<Vec3>& points, int threads)
+{
+  const double inf = std::numeric_limits<double>::infinity();
+  const Chunks chunks(points.size(), threads);
+  std::vector<std::pair<Vec3, Vec3>> part(chunks.count, { Vec3::Constant(inf), Vec3::Constant(-inf) });
+  chunks.run(threads, [&](std::size_t c, std::size_t begin, std::size_t end) {
+    Vec3 lo = part[c].first;
+    Vec3 hi = part[c].second;
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      if (isFinite(points[i]))
+      {
+        lo = lo.cwiseMin(points[i]);
+        hi = hi.cwiseMax(points[i]);
+      }
+    }
+    part[c] = { lo, hi };
+  });
+  std::pair<Vec3, Vec3> bounds = part.front();
+  for (const auto& [lo, hi] : part)
+  {
+    bounds.first = bounds.first.cwiseMin(lo);
+    bounds.second = bounds.second.cwiseMax(hi);
+  }
+  return bounds;
+}
 
 template <int D>
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor>,
@@ -75,20 +154,9 @@ bool PointIndex::holdsBall(const Vec3& c, double r) const
   return true;
 }
 
-int detectDimension(const std::vector<Vec3>& points)
+int detectDimension(const std::vector<Vec3>& points, int threads)
 {
-  double zMin = std::numeric_limits<double>::infinity();
-  double zMax = -zMin;
-  Vec3 lo = Vec3::Constant(zMin);
-  Vec3 hi = Vec3::Constant(zMax);
-  for (const Vec3& p : points)
-  {
-    if (isFinite(p))
-    {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-  }
+  const auto [lo, hi] = finiteBounds(points, threads);
   return detectDimension(lo, hi);
 }
 
@@ -102,23 +170,37 @@ int detectDimension(const Vec3& lo, const Vec3& hi)
   return hi.z() - lo.z() <= 1e-12 * extent ? 2 : 3;
 }
 
-double estimateScale(const PointIndex& index, int k, double multiplier)
+double estimateScale(const PointIndex& index, int k, double multiplier, int threads)
 {
   if (k < 1 || index.size() < static_cast<std::size_t>(k) + 1)
   {
     return 0.0;
   }
   const std::size_t samples = std::min<std::size_t>(index.size(), 2000);
+  // Each sample's distance goes to its own slot, so that the distances are kept in sample order
+  // (the order nth_element sees) whichever thread measured them.
+  std::vector<double> measured(samples, 0.0);
+  std::vector<std::uint8_t> kept(samples, 0);
+  parallelFor(samples, threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::pair<std::uint32_t, double>> found;
+    for (std::size_t s = begin; s < end; ++s)
+    {
+      const std::size_t i = s * index.size() / samples;
+      index.kNearest(index.point(i), static_cast<std::size_t>(k) + 1, found); // the point itself is first
+      if (found.size() == static_cast<std::size_t>(k) + 1)
+      {
+        measured[s] = std::sqrt(found.back().second);
+        kept[s] = 1;
+      }
+    }
+  });
   std::vector<double> distances;
   distances.reserve(samples);
-  std::vector<std::pair<std::uint32_t, double>> found;
   for (std::size_t s = 0; s < samples; ++s)
   {
-    const std::size_t i = s * index.size() / samples;
-    index.kNearest(index.point(i), static_cast<std::size_t>(k) + 1, found); // the point itself is first
-    if (found.size() == static_cast<std::size_t>(k) + 1)
+    if (kept[s])
     {
-      distances.push_back(std::sqrt(found.back().second));
+      distances.push_back(measured[s]);
     }
   }
   if (distances.empty())
@@ -134,21 +216,32 @@ namespace
 
 // out[i] = in[order[i]] for every i, through @p scratch (left holding the old values): large
 // clouds are permuted twice while the index is built, and reusing one buffer saves the time the
-// system takes to hand out fresh memory.
+// system takes to hand out fresh memory. Each i is written once, so threads cannot change it.
 template <class T, class Index>
-void permute(std::vector<T>& values, const std::vector<Index>& order, std::vector<T>& scratch)
+void permute(std::vector<T>& values, const std::vector<Index>& order, std::vector<T>& scratch, int threads)
 {
   scratch.resize(values.size());
-  for (std::size_t i = 0; i < order.size(); ++i)
-  {
-    scratch[i] = values[order[i]];
-  }
+  forEachRange(order.size(), threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      scratch[i] = values[order[i]];
+    }
+  });
   values.swap(scratch);
+}
+
+// values[i] = i for every i.
+void fillIota(std::vector<std::uint32_t>& values, int threads)
+{
+  forEachRange(values.size(), threads, [&](std::size_t begin, std::size_t end) {
+    std::iota(values.begin() + static_cast<std::ptrdiff_t>(begin), values.begin() + static_cast<std::ptrdiff_t>(end),
+      static_cast<std::uint32_t>(begin));
+  });
 }
 
 } // namespace
 
-PointIndex::PointIndex(std::vector<Vec3> points, int dimension)
+PointIndex::PointIndex(std::vector<Vec3> points, int dimension, int threads)
   : Dimension(dimension)
   , Points(std::move(points))
 {
@@ -162,20 +255,57 @@ PointIndex::PointIndex(std::vector<Vec3> points, int dimension)
   {
     throw std::invalid_argument("PointIndex: more than 2^32 - 1 points are not supported");
   }
-  // Keep the finite points, in place.
-  OriginalIds.reserve(Points.size());
-  for (std::size_t i = 0; i < Points.size(); ++i)
+  std::vector<Vec3> scratchPoints;
+  std::vector<std::uint32_t> scratchIds;
+  // Keep the finite points in input order: each chunk counts its own, and the counts of the
+  // chunks before it say where its points go.
+  const Chunks chunks(Points.size(), threads);
+  std::vector<std::size_t> offset(chunks.count + 1, 0);
+  chunks.run(threads, [&](std::size_t c, std::size_t begin, std::size_t end) {
+    offset[c + 1] = static_cast<std::size_t>(
+      std::count_if(Points.begin() + static_cast<std::ptrdiff_t>(begin), Points.begin() + static_cast<std::ptrdiff_t>(end),
+        [](const Vec3& p) { return isFinite(p); }));
+  });
+  std::partial_sum(offset.begin(), offset.end(), offset.begin());
+  const std::size_t finite = offset.back();
+  Skipped = Points.size() - finite;
+  OriginalIds.resize(finite);
+  if (Skipped == 0)
   {
-    if (isFinite(Points[i]))
+    fillIota(OriginalIds, threads);
+    if (Dimension == 2)
     {
-      Points[OriginalIds.size()] = restrict(Points[i]);
-      OriginalIds.push_back(static_cast<std::uint32_t>(i));
+      forEachRange(Points.size(), threads, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          Points[i] = restrict(Points[i]);
+        }
+      });
     }
   }
-  Skipped = Points.size() - OriginalIds.size();
-  Points.resize(OriginalIds.size());
+  else
+  {
+    // Into the scratch buffer, not in place: a chunk's points would land where the chunk before
+    // it may still be reading.
+    scratchPoints.resize(finite);
+    chunks.run(threads, [&](std::size_t c, std::size_t begin, std::size_t end) {
+      std::size_t to = offset[c];
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        if (isFinite(Points[i]))
+        {
+          scratchPoints[to] = restrict(Points[i]);
+          OriginalIds[to] = static_cast<std::uint32_t>(i);
+          ++to;
+        }
+      }
+    });
+    Points.swap(scratchPoints);
+  }
   if (!Points.empty())
   {
+    // Serial on purpose: the centroid is a floating-point sum, whose bits depend on the order of
+    // its terms, and the bounds come for free in the same pass.
     Vec3 sum = Vec3::Zero();
     BoundsMin = BoundsMax = Points.front();
     for (const Vec3& p : Points)
@@ -194,19 +324,20 @@ PointIndex::PointIndex(std::vector<Vec3> points, int dimension)
   // leaf order (and so the points estimateScale samples, and the automatic h) stays what it was.
   // A fixed count, not the machine's cache size, so that results do not depend on the machine.
   constexpr std::size_t SortedBuildThreshold = std::size_t(1) << 20; // 24 MiB of coordinates
-  std::vector<Vec3> scratchPoints;
-  std::vector<std::uint32_t> scratchIds;
   if (Points.size() > SortedBuildThreshold)
   {
-    const std::vector<std::uint32_t> order = spatialOrder(Points);
-    permute(Points, order, scratchPoints);
-    permute(OriginalIds, order, scratchIds);
+    const std::vector<std::uint32_t> order = spatialOrder(Points, threads);
+    permute(Points, order, scratchPoints, threads);
+    permute(OriginalIds, order, scratchIds, threads);
   }
   Impl = std::make_unique<Tree>();
   Impl->adaptor.points = &Points;
+  Impl->adaptor.boundsMin = &BoundsMin;
+  Impl->adaptor.boundsMax = &BoundsMax;
   // Leaves of up to 64 points: the neighbourhoods here hold hundreds of points, and walking fewer,
   // larger leaves costs less than filtering the few more points they bring (measured on the
-  // bunny: 16 -> 64 made the plane-procedure projection about 15% faster).
+  // bunny: 16 -> 64 made the plane-procedure projection about 15% faster). nanoflann 1.4 builds
+  // the tree on one thread.
   const nanoflann::KDTreeSingleIndexAdaptorParams params(64);
   if (Dimension == 2)
   {
@@ -222,9 +353,9 @@ PointIndex::PointIndex(std::vector<Vec3> points, int dimension)
   std::visit(
     [&](auto& tree) {
       auto& permutation = nanoflann_internals::permutation(*tree);
-      permute(Points, permutation, scratchPoints);
-      permute(OriginalIds, permutation, scratchIds);
-      std::iota(permutation.begin(), permutation.end(), 0u);
+      permute(Points, permutation, scratchPoints, threads);
+      permute(OriginalIds, permutation, scratchIds, threads);
+      fillIota(permutation, threads);
     },
     Impl->tree);
 }
@@ -365,65 +496,97 @@ std::uint64_t spreadBits(std::uint64_t v)
   return v;
 }
 
+// A point's Morton code and its input index. The empty constructor leaves both unset on purpose:
+// the arrays of them are filled in parallel right away, and zeroing them first would be a serial
+// pass over 16 bytes a point.
+struct Keyed
+{
+  Keyed() {} // not = default: vector(n) would then zero every item
+  Keyed(std::uint64_t k, std::uint32_t i)
+    : key(k)
+    , id(i)
+  {
+  }
+  std::uint64_t key;
+  std::uint32_t id;
+};
+
 // The ids of @p keyed in ascending key order, equal keys by ascending id: what std::sort of the
 // (key, id) pairs gives when the ids come in ascending order, as they do here, but a stable
 // least-significant-digit radix sort of 8-bit digits, several times faster on millions of points
 // (a comparison sort's random accesses dominated building the index of a large cloud). Digits
-// that every key shares are skipped.
-std::vector<std::uint32_t> sortedIds(std::vector<std::pair<std::uint64_t, std::uint32_t>>& keyed)
+// that every key shares are skipped. Each pass counts the digits of each chunk on its own thread;
+// a chunk's items of one digit value then go after those of every smaller value and of every
+// earlier chunk, which is where the serial pass puts them, so the order is the same for every
+// thread count.
+std::vector<std::uint32_t> sortedIds(std::vector<Keyed>& keyed, int threads)
 {
   constexpr int Bits = 8;
   constexpr std::size_t Buckets = std::size_t(1) << Bits;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> scratch(keyed.size());
-  std::vector<std::size_t> start(Buckets);
+  const std::size_t n = keyed.size();
+  std::vector<Keyed> scratch(n);
+  const Chunks chunks(n, threads);
+  std::vector<std::array<std::size_t, Buckets>> start(chunks.count);
   for (int shift = 0; shift < 64; shift += Bits)
   {
-    std::fill(start.begin(), start.end(), 0);
-    for (const auto& k : keyed)
+    chunks.run(threads, [&](std::size_t c, std::size_t begin, std::size_t end) {
+      std::array<std::size_t, Buckets>& count = start[c];
+      count.fill(0);
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        ++count[(keyed[i].key >> shift) & (Buckets - 1)];
+      }
+    });
+    bool moves = true;
+    for (std::size_t b = 0; b < Buckets && moves; ++b)
     {
-      ++start[(k.first >> shift) & (Buckets - 1)];
+      std::size_t total = 0;
+      for (const auto& count : start)
+      {
+        total += count[b];
+      }
+      moves = total != n;
     }
-    if (std::find(start.begin(), start.end(), keyed.size()) != start.end())
+    if (!moves)
     {
       continue; // one digit value for all: this pass would not move anything
     }
     std::size_t sum = 0;
-    for (std::size_t& b : start)
+    for (std::size_t b = 0; b < Buckets; ++b)
     {
-      sum += std::exchange(b, sum);
+      for (auto& count : start)
+      {
+        sum += std::exchange(count[b], sum);
+      }
     }
-    for (const auto& k : keyed)
-    {
-      scratch[start[(k.first >> shift) & (Buckets - 1)]++] = k;
-    }
+    chunks.run(threads, [&](std::size_t c, std::size_t begin, std::size_t end) {
+      std::array<std::size_t, Buckets>& next = start[c];
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        scratch[next[(keyed[i].key >> shift) & (Buckets - 1)]++] = keyed[i];
+      }
+    });
     keyed.swap(scratch);
   }
-  std::vector<std::uint32_t> order(keyed.size());
-  for (std::size_t i = 0; i < keyed.size(); ++i)
-  {
-    order[i] = keyed[i].second;
-  }
+  std::vector<std::uint32_t> order(n);
+  forEachRange(n, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      order[i] = keyed[i].id;
+    }
+  });
   return order;
 }
 
 } // namespace
 
-std::vector<std::uint32_t> spatialOrder(const std::vector<Vec3>& points)
+std::vector<std::uint32_t> spatialOrder(const std::vector<Vec3>& points, int threads)
 {
   if (points.size() >= std::size_t(UINT32_MAX))
   {
     throw std::invalid_argument("more than 2^32 - 1 points are not supported");
   }
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
-  Vec3 hi = -lo;
-  for (const Vec3& p : points)
-  {
-    if (isFinite(p))
-    {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-  }
+  const auto [lo, hi] = finiteBounds(points, threads);
   // Cells per unit length on each axis (0 on a flat axis); the extent may overflow to infinity
   // for coordinates near double's limits, which only coarsens the grid to one cell.
   const double cells = double((1u << 21) - 1);
@@ -433,23 +596,25 @@ std::vector<std::uint32_t> spatialOrder(const std::vector<Vec3>& points)
     const double extent = hi[d] - lo[d];
     scale[d] = extent > 0.0 && std::isfinite(extent) ? cells / extent : 0.0;
   }
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
-    const Vec3& p = points[i];
-    std::uint64_t code = std::numeric_limits<std::uint64_t>::max();
-    if (isFinite(p))
+  std::vector<Keyed> keyed(points.size());
+  forEachRange(points.size(), threads, [&, lo = lo](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
     {
-      code = 0;
-      for (int d = 0; d < 3; ++d)
+      const Vec3& p = points[i];
+      std::uint64_t code = std::numeric_limits<std::uint64_t>::max();
+      if (isFinite(p))
       {
-        const double cell = std::min(cells, std::max(0.0, (p[d] - lo[d]) * scale[d]));
-        code |= spreadBits(static_cast<std::uint64_t>(cell)) << d;
+        code = 0;
+        for (int d = 0; d < 3; ++d)
+        {
+          const double cell = std::min(cells, std::max(0.0, (p[d] - lo[d]) * scale[d]));
+          code |= spreadBits(static_cast<std::uint64_t>(cell)) << d;
+        }
       }
+      keyed[i] = Keyed(code, static_cast<std::uint32_t>(i));
     }
-    keyed[i] = { code, static_cast<std::uint32_t>(i) };
-  }
-  return sortedIds(keyed);
+  });
+  return sortedIds(keyed, threads);
 }
 
 void PointIndex::leavesInBall(const Vec3& x, double sqRadius, LeafRanges& ranges) const

@@ -27,8 +27,10 @@ class PointIndex
 {
 public:
   /// @param points the cloud (taken by value: move a large cloud in, the index keeps its memory);
-  /// @param dimension 2 (xy-plane) or 3. Throws std::invalid_argument for any other dimension.
-  PointIndex(std::vector<Vec3> points, int dimension);
+  /// @param dimension 2 (xy-plane) or 3. Throws std::invalid_argument for any other dimension;
+  /// @param threads threads the construction may use (0 = all cores). The index is the same, bit
+  /// for bit, for every count; the default 1 keeps a caller that does not ask on its own thread.
+  PointIndex(std::vector<Vec3> points, int dimension, int threads = 1);
   ~PointIndex();
   PointIndex(const PointIndex&) = delete;
   PointIndex& operator=(const PointIndex&) = delete;
@@ -122,18 +124,19 @@ private:
  * of each point's cell in a 2^21 grid over the points' bounding box, ties in input order, points
  * with a NaN or infinite coordinate last (in input order). Projections visited in this order reuse each other's
  * cached neighbours, and memory is read coherently, whatever order the input came in.
+ * Computed on @p threads threads (0 = all cores); the order is the same for every count.
  * Throws std::invalid_argument beyond 2^32 - 1 points.
  */
-std::vector<std::uint32_t> spatialOrder(const std::vector<Vec3>& points);
+std::vector<std::uint32_t> spatialOrder(const std::vector<Vec3>& points, int threads = 1);
 
 /// True when all three coordinates are finite.
 bool isFinite(const Vec3& x);
 
 /**
  * 2 when every finite point has the same z (to 1e-12 of the cloud's extent), else 3: the rule
- * behind Dimension = Auto. An empty cloud counts as 3.
+ * behind Dimension = Auto. An empty cloud counts as 3. Runs on @p threads threads (0 = all cores).
  */
-int detectDimension(const std::vector<Vec3>& points);
+int detectDimension(const std::vector<Vec3>& points, int threads = 1);
 
 /// The same rule from the finite points' bounds [lo, hi] (lo.x > hi.x: no finite point), which
 /// a distributed run reduces over its ranks.
@@ -144,8 +147,9 @@ int detectDimension(const Vec3& lo, const Vec3& hi);
  * neighbour (k >= 1; at most 2000 evenly spread points are measured, so the cost stays small).
  * With the defaults k = 10, multiplier = 1 this is about 5 spacings along a curve and 1.8
  * spacings on a surface, enough neighbours for every definition to be defined near the cloud.
- * Returns 0 when the cloud has fewer than k + 1 distinct points.
+ * Returns 0 when the cloud has fewer than k + 1 distinct points. The queries run on @p threads
+ * threads (0 = all cores); h is the same for every count.
  */
-double estimateScale(const PointIndex& index, int k = 10, double multiplier = 1.0);
+double estimateScale(const PointIndex& index, int k = 10, double multiplier = 1.0, int threads = 1);
 
 } // namespace pss
