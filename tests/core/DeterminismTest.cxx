@@ -1,13 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// projectAll's results must not depend on the number of threads (Parallel.h / ExtremalSurface.h).
+// projectAll's results, and the index they run on, must not depend on the number of threads
+// (Parallel.h / ExtremalSurface.h / PointIndex.h).
 
 #include "TestClouds.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <limits>
+#include <string>
 
 using namespace pss;
 using namespace pss_test;
@@ -28,7 +33,158 @@ std::vector<Vec3> noisyCurve(double h, unsigned seed)
   return pts;
 }
 
+/// @p n uniform random points in a 100-unit cube, with what the index must get right whatever the
+/// chunking: every 101st point has a NaN or infinite coordinate, every 53rd repeats an earlier
+/// point exactly, and a few sit at +0 and -0 (zeros of either sign compare equal).
+std::vector<Vec3> messyCloud(std::size_t n, unsigned seed)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-50.0, 50.0);
+  std::vector<Vec3> pts(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    pts[i] = Vec3(u(rng), u(rng), u(rng));
+    if (i % 101 == 7)
+    {
+      pts[i][static_cast<int>(i % 3)] = (i % 2) ? nan : -inf;
+    }
+    else if (i % 53 == 11)
+    {
+      pts[i] = pts[i / 2];
+    }
+    else if (i % 997 == 5)
+    {
+      pts[i] = Vec3((i % 2) ? 0.0 : -0.0, pts[i].y(), -0.0);
+    }
+  }
+  return pts;
+}
+
+/// Same bits (memcmp, so -0 differs from +0 and NaNs compare equal to themselves).
+template <class T>
+bool sameBits(const std::vector<T>& a, const std::vector<T>& b)
+{
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+bool sameBits(const Vec3& a, const Vec3& b)
+{
+  return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0;
+}
+
+bool sameBits(double a, double b)
+{
+  return std::memcmp(&a, &b, sizeof(double)) == 0;
+}
+
+/// Everything a PointIndex exposes of its construction, and the answers of its tree to queries.
+void expectSameIndex(const PointIndex& a, const PointIndex& b)
+{
+  EXPECT_EQ(a.size(), b.size());
+  EXPECT_EQ(a.skippedCount(), b.skippedCount());
+  EXPECT_TRUE(sameBits(a.points(), b.points()));
+  std::vector<std::uint32_t> idsA, idsB;
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    idsA.push_back(static_cast<std::uint32_t>(a.originalId(i)));
+  }
+  for (std::size_t i = 0; i < b.size(); ++i)
+  {
+    idsB.push_back(static_cast<std::uint32_t>(b.originalId(i)));
+  }
+  EXPECT_EQ(idsA, idsB);
+  EXPECT_EQ(a.visitingOrder(), b.visitingOrder());
+  EXPECT_TRUE(sameBits(a.centroid(), b.centroid()));
+  EXPECT_TRUE(sameBits(a.boundsMin(), b.boundsMin()));
+  EXPECT_TRUE(sameBits(a.boundsMax(), b.boundsMax()));
+  // The tree itself: the same queries find the same indices at the same distances.
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-60.0, 60.0);
+  std::vector<std::pair<std::uint32_t, double>> foundA, foundB;
+  PointIndex::LeafRanges leavesA, leavesB;
+  for (int q = 0; q < 200; ++q)
+  {
+    const Vec3 x(u(rng), u(rng), u(rng));
+    a.kNearest(x, 12, foundA);
+    b.kNearest(x, 12, foundB);
+    EXPECT_EQ(foundA, foundB);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> rangesA, rangesB;
+    a.forEachLeafInBall(x, 25.0, leavesA, [&](std::uint32_t lo, std::uint32_t hi) { rangesA.emplace_back(lo, hi); });
+    b.forEachLeafInBall(x, 25.0, leavesB, [&](std::uint32_t lo, std::uint32_t hi) { rangesB.emplace_back(lo, hi); });
+    EXPECT_EQ(rangesA, rangesB);
+  }
+}
+
 } // namespace
+
+// Truth: the index is built from per-point loops, whose results do not depend on who computes
+// them, and from per-chunk counts (the NaN filter, the radix sort's histograms) combined in chunk
+// order, which give the serial result for any chunking; the centroid's sum stays serial. So 1, 2
+// and 3 threads (1, 8 and 12 chunks) give the same bits. 300,000 points take the input-order
+// build, 2^20 + 30,000 the Morton-sorted one (PointIndex.cxx's SortedBuildThreshold).
+TEST(Determinism, PointIndexIndependentOfThreadCount)
+{
+  for (const std::size_t n : { std::size_t(300000), (std::size_t(1) << 20) + 30000 })
+  {
+    const std::vector<Vec3> cloud = messyCloud(n, static_cast<unsigned>(n));
+    for (const int dimension : { 3, 2 })
+    {
+      if (n > 300000 && dimension == 2)
+      {
+        continue; // the sorted build is the same code in 2D; spare the sanitizer stages its time
+      }
+      SCOPED_TRACE("n " + std::to_string(n) + ", dimension " + std::to_string(dimension));
+      const PointIndex one(cloud, dimension, 1);
+      ASSERT_GT(one.skippedCount(), n / 200);
+      const double h = estimateScale(one, 10, 1.0, 1);
+      ASSERT_GT(h, 0.0);
+      for (const int threads : { 2, 3 })
+      {
+        SCOPED_TRACE("threads " + std::to_string(threads));
+        const PointIndex other(cloud, dimension, threads);
+        expectSameIndex(one, other);
+        EXPECT_TRUE(sameBits(h, estimateScale(other, 10, 1.0, threads)));
+        EXPECT_TRUE(sameBits(h, estimateScale(one, 10, 1.0, threads)));
+      }
+      EXPECT_EQ(detectDimension(cloud, 1), 3);
+      EXPECT_EQ(detectDimension(cloud, 3), 3);
+    }
+  }
+}
+
+// Truth: spatialOrder's radix sort places each chunk's keys of a digit value after those of the
+// earlier chunks, which is where the serial pass places them; its keys are computed per point.
+// So the order (a stable sort, ties by input index) is the same for every thread count.
+TEST(Determinism, SpatialOrderIndependentOfThreadCount)
+{
+  const std::vector<Vec3> cloud = messyCloud(400000, 5u);
+  const std::vector<std::uint32_t> one = spatialOrder(cloud, 1);
+  ASSERT_EQ(one.size(), cloud.size());
+  for (const int threads : { 2, 3, 0 })
+  {
+    EXPECT_TRUE(sameBits(one, spatialOrder(cloud, threads))) << "threads " << threads;
+  }
+  // Non-finite points last, in input order.
+  std::vector<std::uint32_t> tail;
+  for (std::uint32_t i = 0; i < cloud.size(); ++i)
+  {
+    if (!isFinite(cloud[i]))
+    {
+      tail.push_back(i);
+    }
+  }
+  EXPECT_TRUE(std::equal(tail.begin(), tail.end(), one.end() - static_cast<std::ptrdiff_t>(tail.size())));
+  // A flat cloud (2D detection) also detects the same on any thread count.
+  std::vector<Vec3> flat(cloud);
+  for (Vec3& p : flat)
+  {
+    p.z() = 1.5;
+  }
+  EXPECT_EQ(detectDimension(flat, 1), 2);
+  EXPECT_EQ(detectDimension(flat, 2), 2);
+}
 
 // Truth: each start is computed independently and identically, so 1 and 2 threads must give the
 // same bits; 1e-12 relative is the brief's bound (any real difference would be far larger).
