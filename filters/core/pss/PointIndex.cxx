@@ -326,9 +326,16 @@ PointIndex::PointIndex(std::vector<Vec3> points, int dimension, int threads)
   constexpr std::size_t SortedBuildThreshold = std::size_t(1) << 20; // 24 MiB of coordinates
   if (Points.size() > SortedBuildThreshold)
   {
-    const std::vector<std::uint32_t> order = spatialOrder(Points, threads);
+    std::vector<std::uint32_t> order = spatialOrder(Points, threads);
     permute(Points, order, scratchPoints, threads);
-    permute(OriginalIds, order, scratchIds, threads);
+    if (Skipped == 0)
+    {
+      OriginalIds = std::move(order); // the ids are the identity, permuted: the order itself
+    }
+    else
+    {
+      permute(OriginalIds, order, scratchIds, threads);
+    }
   }
   Impl = std::make_unique<Tree>();
   Impl->adaptor.points = &Points;
