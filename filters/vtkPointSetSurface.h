@@ -13,7 +13,9 @@
  *
  * Prepare() builds the k-d tree and the surface definition for a cloud and caches them until the
  * cloud or a parameter changes. Points with NaN or infinite coordinates are left out of the index
- * and counted (GetNumberOfSkippedPoints()).
+ * and counted (GetNumberOfSkippedPoints()). The index and the automatic scale are computed on as
+ * many threads as vtkSMPTools gives (one with its Sequential backend); they are the same, bit for
+ * bit, for every thread count.
  *
  * Scale: with AutomaticScale on (the default), h = ScaleMultiplier times the median distance from
  * a point to its ScaleNeighbors-th nearest neighbour (defaults 1 and 10: about five spacings along
