@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PointSetSurfacesVTKUtilities.h"
+#include "PointSetSurfacesSMP.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCommunicator.h"
@@ -283,8 +284,9 @@ double RootAutomaticScale(vtkMultiProcessController* controller, vtkPointSetSurf
       points[i] = pss::Vec3(all[3 * i], all[3 * i + 1], all[3 * i + 2]);
     }
     all = std::vector<double>();
-    const pss::PointIndex index(std::move(points), run.Dimension);
-    h = pss::estimateScale(index, surface->GetScaleNeighbors(), surface->GetScaleMultiplier());
+    const int threads = CoreThreads();
+    const pss::PointIndex index(std::move(points), run.Dimension, threads);
+    h = pss::estimateScale(index, surface->GetScaleNeighbors(), surface->GetScaleMultiplier(), threads);
   }
   controller->Broadcast(&h, 1, 0);
   return h;
