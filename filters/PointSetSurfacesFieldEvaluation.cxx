@@ -23,12 +23,14 @@ namespace pss_vtk
 {
 
 bool MakeOrientation(int rule, const double referencePoint[3], const double referenceDirection[3],
-  const pss::PointIndex& index, pss::Orientation& out, std::string& error)
+  const pss::Vec3& centroid, pss::Orientation& out, std::string& error)
 {
   switch (rule)
   {
     case ORIENT_AWAY_FROM_CENTROID:
-      out = pss::Orientation::awayFromCentroid(index);
+      // pss::Orientation::awayFromCentroid's rule, with the given centroid.
+      out.rule = pss::Orientation::Rule::AwayFromPoint;
+      out.reference = centroid;
       return true;
     case ORIENT_AWAY_FROM_POINT:
     {

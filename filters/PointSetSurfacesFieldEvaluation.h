@@ -41,12 +41,14 @@ enum OrientationRule : int
 };
 
 /**
- * The pss::Orientation meant by @p rule for the prepared cloud @p index. Returns false with a
+ * The pss::Orientation meant by @p rule for a cloud whose finite points have the centroid
+ * @p centroid (pss::PointIndex::centroid; in a run with ghost points, the one reduced over the
+ * ranks). Returns false with a
  * message in @p error for an unknown rule, a non-finite reference point or a zero/non-finite
  * reference direction (which is normalised otherwise).
  */
 bool MakeOrientation(int rule, const double referencePoint[3], const double referenceDirection[3],
-  const pss::PointIndex& index, pss::Orientation& out, std::string& error);
+  const pss::Vec3& centroid, pss::Orientation& out, std::string& error);
 
 /// Everything sampled at one point. Never NaN or infinite: invalid values are written as 0.
 struct FieldValues

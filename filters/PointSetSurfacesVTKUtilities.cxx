@@ -469,6 +469,102 @@ bool PrepareGhostSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
   return true;
 }
 
+namespace
+{
+// The box of the finite points @p ks, grown by @p margin (lo > hi: none).
+void GrownBounds(const GhostPointAt& pointAt, const std::vector<std::uint32_t>& ks, double margin, double lo[3],
+  double hi[3])
+{
+  std::fill(lo, lo + 3, VTK_DOUBLE_MAX);
+  std::fill(hi, hi + 3, -VTK_DOUBLE_MAX);
+  for (std::uint32_t k : ks)
+  {
+    double p[3];
+    pointAt(k, p);
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], p[a] - margin);
+        hi[a] = std::max(hi[a], p[a] + margin);
+      }
+    }
+  }
+}
+} // namespace
+
+int RunGhostRounds(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMultiProcessController* controller,
+  GhostRun& run, double margin, std::vector<std::uint32_t> ks, std::size_t n, const GhostPointAt& pointAt,
+  const GhostEvaluation& evaluate)
+{
+  std::vector<unsigned char> escaped(n, 0);
+  double lo[3];
+  double hi[3];
+  GrownBounds(pointAt, ks, margin, lo, hi);
+  for (int round = 1;; ++round)
+  {
+    if (!PrepareGhostSurface(algorithm, surface, controller, run, lo, hi))
+    {
+      return 0;
+    }
+    bool failed = false; // a rank that fails still takes part in the round's reduction
+    if (surface->GetDefinition() && !ks.empty())
+    {
+      failed = !evaluate(ks, escaped);
+    }
+    else
+    {
+      for (std::uint32_t k : ks)
+      {
+        escaped[k] = 1; // no cloud point within reach yet
+      }
+    }
+    std::vector<std::uint32_t> again;
+    for (std::uint32_t k : ks)
+    {
+      if (escaped[k])
+      {
+        again.push_back(k);
+      }
+    }
+    const vtkIdType local[2] = { failed ? 0 : static_cast<vtkIdType>(again.size()), failed ? 1 : 0 };
+    vtkIdType total[2] = { 0, 0 };
+    controller->AllReduce(local, total, 2, vtkCommunicator::SUM_OP);
+    if (total[1] > 0)
+    {
+      if (!failed)
+      {
+        vtkErrorWithObjectMacro(algorithm, << "another rank failed (see its error)");
+      }
+      return 0;
+    }
+    if (total[0] == 0)
+    {
+      return round;
+    }
+    margin *= 2.0;
+    GrownBounds(pointAt, again, margin, lo, hi);
+    if (!(lo[0] <= hi[0]) && !again.empty())
+    {
+      // Only NaN/Inf points are left, on a rank without a surface yet: they need one to be
+      // flagged as such, so this rank takes the whole cloud (rare: no cloud point within reach).
+      std::copy(run.Lo, run.Lo + 3, lo);
+      std::copy(run.Hi, run.Hi + 3, hi);
+    }
+    ks = std::move(again);
+  }
+}
+
+void AddGhostFieldData(vtkDataObject* output, int rounds, const GhostRun& run)
+{
+  auto roundsArray = NewArray<vtkIntArray>("GhostRounds", 1, 1);
+  roundsArray->SetValue(0, rounds);
+  output->GetFieldData()->AddArray(roundsArray);
+  auto count = NewArray<vtkIdTypeArray>("GhostPoints", 1, 1);
+  count->SetValue(0, run.Ghosts);
+  output->GetFieldData()->AddArray(count);
+}
+
 void AddGlobalPointIds(vtkPointData* pd, vtkIdType first, vtkIdType n)
 {
   if (pd->GetGlobalIds())

@@ -15,6 +15,8 @@
 
 #include "pss/Types.h"
 
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 class vtkAlgorithm;
@@ -128,6 +130,31 @@ bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMult
  */
 bool PrepareGhostSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
   vtkMultiProcessController* controller, GhostRun& run, const double lo[3], const double hi[3]);
+
+/// Coordinates of a ghost run's point @p k (RunGhostRounds).
+using GhostPointAt = std::function<void(std::uint32_t k, double x[3])>;
+
+/// Evaluates a ghost run's points @p ks in that order on the surface as prepared, setting
+/// escaped[k] for each when its evaluation read beyond the complete region
+/// (pss::Workspace::leftCompleteRegion). Returns false after reporting an error.
+using GhostEvaluation = std::function<bool(const std::vector<std::uint32_t>& ks, std::vector<unsigned char>& escaped)>;
+
+/**
+ * Collective over @p controller: evaluates this rank's points @p ks (indices below @p n) with
+ * ghost points, in rounds. Round 1 prepares @p surface (PrepareGhostSurface) in the box of the
+ * points grown by @p margin and evaluates them all; each later round doubles the margin around
+ * the points whose evaluation escaped, on any rank, and evaluates those again. Once a box holds
+ * the cloud's bounds no read can leave it, so the rounds end. A rank without a surface yet (no
+ * cloud point in its box) counts its points as escaped. When @p evaluate fails on one rank every
+ * rank fails. Returns the rounds taken, 0 after an error of @p algorithm.
+ */
+int RunGhostRounds(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMultiProcessController* controller,
+  GhostRun& run, double margin, std::vector<std::uint32_t> ks, std::size_t n, const GhostPointAt& pointAt,
+  const GhostEvaluation& evaluate);
+
+/// Field data `GhostRounds` (@p rounds) and `GhostPoints` (the other ranks' points this rank held
+/// in its last round: its memory overhead) of a filter's @p output after RunGhostRounds.
+void AddGhostFieldData(vtkDataObject* output, int rounds, const GhostRun& run);
 
 /// Unless @p pd has global ids already, gives its @p n tuples the global ids first, first + 1, ...
 /// as `GlobalPointIds` (the distributed filters' outputs, gathered, then match one process's).

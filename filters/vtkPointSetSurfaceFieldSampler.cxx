@@ -23,6 +23,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include "pss/Domain.h"
+#include "pss/ExtremalSurface.h"
 #include "pss/PointIndex.h"
 #include "pss/SurfaceDefinition.h"
 
@@ -30,6 +31,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -167,7 +169,13 @@ bool vtkPointSetSurfaceFieldSampler::ComputeGridGeometry(
     }
     return false;
   }
-  const double margin = this->SamplingMargin * this->Surface->GetEffectiveScale();
+  return this->ComputeGridGeometry(lo, hi, this->Surface->GetEffectiveScale(), origin, spacing, quiet);
+}
+
+bool vtkPointSetSurfaceFieldSampler::ComputeGridGeometry(
+  const double lo[3], const double hi[3], double h, double origin[3], double spacing[3], bool quiet)
+{
+  const double margin = this->SamplingMargin * h;
   double largest = 0.0;
   for (int a = 0; a < 3; ++a)
   {
@@ -289,16 +297,12 @@ int vtkPointSetSurfaceFieldSampler::RequestUpdateExtent(
   return 1;
 }
 
-bool vtkPointSetSurfaceFieldSampler::SetUpSamplingGrid(vtkImageData* image, vtkPointSet* cloud, vtkInformation* outInfo)
+bool vtkPointSetSurfaceFieldSampler::SetUpSamplingGrid(
+  vtkImageData* image, const double origin[3], const double spacing[3], vtkInformation* outInfo)
 {
-  double origin[3], spacing[3];
   if (!image)
   {
     vtkErrorMacro(<< "the output is not a vtkImageData");
-    return false;
-  }
-  if (!this->CheckSampleDimensions() || !this->ComputeGridGeometry(cloud, origin, spacing, false))
-  {
     return false;
   }
   const int* d = this->SampleDimensions;
@@ -350,8 +354,18 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
                   << " (MPI): use AWAY_FROM_CENTROID or ALONG_DIRECTION, or run in one process");
     return 0;
   }
-  if (!pss_vtk::PrepareDistributedSurface(
-        this, this->Surface, controller, cloud, " from the source", this->GatheredCloud))
+  this->GhostRounds = 0;
+  const bool ghosts = controller && this->GhostMargin > 0.0;
+  pss_vtk::GhostRun run;
+  if (ghosts)
+  {
+    if (!pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run))
+    {
+      return 0;
+    }
+  }
+  else if (!pss_vtk::PrepareDistributedSurface(
+             this, this->Surface, controller, cloud, " from the source", this->GatheredCloud))
   {
     return 0;
   }
@@ -364,12 +378,12 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
     ? pss_vtk::GlobalOffset(controller, input ? input->GetNumberOfPoints() : 0)
     : 0;
 
-  const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
   pss::Orientation orientation;
   std::string error;
   const int rule = this->OrientationMode == PROPAGATE ? pss_vtk::ORIENT_AWAY_FROM_CENTROID : this->OrientationMode;
-  if (!pss_vtk::MakeOrientation(
-        rule, this->ReferencePoint, this->ReferenceDirection, *this->Surface->GetIndex(), orientation, error))
+  const pss::Vec3 centroid =
+    ghosts ? pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]) : this->Surface->GetIndex()->centroid();
+  if (!pss_vtk::MakeOrientation(rule, this->ReferencePoint, this->ReferenceDirection, centroid, orientation, error))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -378,7 +392,11 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
   // The two modes differ only in where the samples are: the grid's points or the probe's.
   if (this->GenerateSamplingGrid)
   {
-    if (!this->SetUpSamplingGrid(vtkImageData::SafeDownCast(output), cloud, outInfo))
+    double origin[3], spacing[3];
+    const bool geometry = ghosts ? this->ComputeGridGeometry(run.Lo, run.Hi, run.H, origin, spacing, false)
+                                 : this->ComputeGridGeometry(cloud, origin, spacing, false);
+    if (!this->CheckSampleDimensions() || !geometry ||
+      !this->SetUpSamplingGrid(vtkImageData::SafeDownCast(output), origin, spacing, outInfo))
     {
       return 0;
     }
@@ -424,21 +442,26 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
     double first[3];
     output->GetPoint(0, first); // vtkDataSet::GetPoint(id, x) is thread-safe once called serially
   }
-  bool completed = true;
-  try
-  {
-    if (labelOut)
+  // Samples the points @p ks (all of them in one process) on the surface as prepared; with ghost
+  // points, flags those whose evaluation read beyond this rank's complete region. False after an
+  // error. An abort leaves the output empty; with ghosts the rank still takes part in every round.
+  bool aborted = false;
+  auto sample = [&](const std::vector<std::uint32_t>& ks, std::vector<unsigned char>& escaped) {
+    try
     {
-      projection.validate();
-      thresholds.validate();
-    }
-    const pss_vtk::FieldEvaluator evaluator(surface, orientation);
-    const pss::CloudNormals cloudNormals(surface);
-    completed = pss_vtk::ParallelFor(
-      this, n,
-      [&](vtkIdType i, pss::Workspace& ws) {
+      if (labelOut)
+      {
+        projection.validate();
+        thresholds.validate();
+      }
+      const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
+      const pss_vtk::FieldEvaluator evaluator(surface, orientation);
+      const pss::CloudNormals cloudNormals(surface);
+      auto body = [&](std::size_t k, pss::Workspace& ws) {
+        const vtkIdType i = static_cast<vtkIdType>(k);
         double x[3];
         output->GetPoint(i, x);
+        ws.leftCompleteRegion = false;
         const pss_vtk::FieldValues v = evaluator.Evaluate(x, ws);
         std::copy(v.normal.data(), v.normal.data() + 3, normalOut + 3 * i);
         energyOut[i] = v.energy;
@@ -453,16 +476,47 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
             pss::classifyStart(surface, pss::Vec3(x[0], x[1], x[2]), projection, thresholds, ws, &cloudNormals);
           labelOut[i] = static_cast<int>(ev.label);
         }
-      },
-      0.0, this->OrientationMode == PROPAGATE ? 0.95 : 1.0);
-  }
-  catch (const std::exception& e)
+        if (ghosts)
+        {
+          escaped[k] = ws.leftCompleteRegion ? 1 : 0;
+        }
+      };
+      const bool completed = ghosts
+        ? pss::forEachInOrder(ks, pss_vtk::SMPLoop(this), body)
+        : pss_vtk::ParallelFor(this, n, [&](vtkIdType i, pss::Workspace& ws) { body(static_cast<std::size_t>(i), ws); },
+            0.0, this->OrientationMode == PROPAGATE ? 0.95 : 1.0);
+      aborted = aborted || !completed;
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro(<< "field sampling failed: " << e.what());
+      return false;
+    }
+    return true;
+  };
+  if (ghosts)
   {
-    vtkErrorMacro(<< "field sampling failed: " << e.what());
-    output->Initialize();
-    return 0;
+    std::vector<std::uint32_t> all(static_cast<std::size_t>(n));
+    std::iota(all.begin(), all.end(), 0u);
+    this->GhostRounds = pss_vtk::RunGhostRounds(this, this->Surface, controller, run,
+      this->GhostMargin * run.H, std::move(all), static_cast<std::size_t>(n),
+      [output](std::uint32_t k, double x[3]) { output->GetPoint(static_cast<vtkIdType>(k), x); }, sample);
+    if (this->GhostRounds == 0)
+    {
+      output->Initialize();
+      return 0;
+    }
   }
-  if (!completed)
+  else
+  {
+    std::vector<unsigned char> none;
+    if (!sample({}, none))
+    {
+      output->Initialize();
+      return 0;
+    }
+  }
+  if (aborted)
   {
     output->Initialize(); // aborted: leave the output empty
     return 1;
@@ -499,6 +553,10 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
   {
     pss_vtk::AddGlobalPointIds(outPD, firstGlobalId, n);
   }
+  if (ghosts)
+  {
+    pss_vtk::AddGhostFieldData(output, this->GhostRounds, run);
+  }
   return 1;
 }
 
@@ -520,5 +578,6 @@ void vtkPointSetSurfaceFieldSampler::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxNormalAngle: " << this->MaxNormalAngle << "\n";
   os << indent << "MaxIterations: " << this->MaxIterations << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "GhostMargin: " << this->GhostMargin << "\n";
   pss_vtk::PrintSurface(os, indent, this->Surface);
 }

@@ -101,6 +101,11 @@
  * the one-process output, bitwise; probe outputs carry `GlobalPointIds` (input 0's order, rank by
  * rank) unless input 0 has global ids. PROPAGATE needs the whole set of samples on one rank and is
  * refused with an error on every rank; use AWAY_FROM_CENTROID or ALONG_DIRECTION there.
+ * With GhostMargin > 0 no rank holds the whole cloud: each holds its own cloud points plus the
+ * other ranks' points inside the box of its samples grown by GhostMargin * h, and samples whose
+ * evaluation reads beyond that box are evaluated again with a box grown by twice the margin (as
+ * vtkPointSetSurfaceProjection does; the grid's geometry comes from the bounds and h reduced over
+ * the ranks). Results then equal the one-process output to rounding, not bitwise.
  *
  * Errors (vtkErrorMacro, the update fails, no output): empty cloud or cloud without a finite
  * point, h <= 0 (AutomaticScale off and ScaleFactor <= 0), an invalid reference direction or
@@ -228,6 +233,22 @@ public:
   vtkGetMacro(Tolerance, double);
   ///@}
 
+  ///@{
+  /**
+   * Distributed runs only (ignored in one process), as vtkPointSetSurfaceProjection's: 0 (default)
+   * gathers the whole cloud on every rank (bitwise the one-process output); > 0 exchanges only
+   * the cloud points within this many h of the box of a rank's samples. A grid sample far from
+   * the cloud reads far (its neighbourhood reaches its nearest cloud point plus the kernel's
+   * support), so the grid's corners may take a few rounds.
+   */
+  vtkSetClampMacro(GhostMargin, double, 0.0, 1e6);
+  vtkGetMacro(GhostMargin, double);
+  ///@}
+
+  /// The rounds of ghost exchange the last distributed update with GhostMargin > 0 took (0
+  /// otherwise); also the output's field data `GhostRounds`, beside `GhostPoints`.
+  vtkGetMacro(GhostRounds, int);
+
   /// The h used by the last update (after automatic scaling).
   double GetEffectiveScale() const;
 
@@ -260,6 +281,8 @@ protected:
   double MaxNormalAngle = 30.0;
   int MaxIterations = 100;
   double Tolerance = 1e-6;
+  double GhostMargin = 0.0;
+  int GhostRounds = 0;
 
 private:
   vtkPointSetSurfaceFieldSampler(const vtkPointSetSurfaceFieldSampler&) = delete;
@@ -267,12 +290,16 @@ private:
 
   // Checks SampleDimensions (>= 1, at most 2^31 samples and 4 GiB of arrays); false after an error.
   bool CheckSampleDimensions();
-  // Origin and spacing of the generated grid for the prepared cloud; false (after an error unless
-  // quiet) when the grid would be degenerate.
+  // Origin and spacing of the generated grid around the finite cloud points' bounds [lo, hi] at
+  // scale h; false (after an error unless quiet) when the grid would be degenerate.
+  bool ComputeGridGeometry(const double lo[3], const double hi[3], double h, double origin[3], double spacing[3],
+    bool quiet);
+  // The same for the prepared cloud.
   bool ComputeGridGeometry(vtkPointSet* cloud, double origin[3], double spacing[3], bool quiet);
-  // GenerateSamplingGrid's path: gives @p image the grid's geometry (the requested part of its
-  // extent); false after an error. The probe's path is a shallow copy of input 0.
-  bool SetUpSamplingGrid(vtkImageData* image, vtkPointSet* cloud, vtkInformation* outInfo);
+  // GenerateSamplingGrid's path: gives @p image the grid's geometry (origin, spacing; the
+  // requested part of its extent); false after an error. The probe's path is a shallow copy of
+  // input 0.
+  bool SetUpSamplingGrid(vtkImageData* image, const double origin[3], const double spacing[3], vtkInformation* outInfo);
 };
 
 #endif

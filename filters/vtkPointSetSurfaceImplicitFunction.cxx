@@ -152,7 +152,7 @@ bool vtkPointSetSurfaceImplicitFunction::Initialize()
     pss::Orientation orientation;
     std::string error;
     if (!pss_vtk::MakeOrientation(this->OrientationMode, this->ReferencePoint, this->ReferenceDirection,
-          *this->Surface->GetIndex(), orientation, error))
+          this->Surface->GetIndex()->centroid(), orientation, error))
     {
       vtkErrorMacro(<< error);
     }

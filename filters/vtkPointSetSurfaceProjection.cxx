@@ -161,29 +161,6 @@ void FillProjectionLines(vtkPoints* startPoints, const StandardArrays& arrays, c
   lines->GetCellData()->AddArray(lineStart);
 }
 
-// The box of the finite start points listed in @p which, grown by @p margin (lo > hi: none).
-void GrownBounds(vtkPoints* points, const std::vector<std::uint32_t>& which, double margin, double lo[3], double hi[3])
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    lo[a] = VTK_DOUBLE_MAX;
-    hi[a] = -VTK_DOUBLE_MAX;
-  }
-  for (std::uint32_t i : which)
-  {
-    double p[3];
-    points->GetPoint(static_cast<vtkIdType>(i), p);
-    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
-    {
-      for (int a = 0; a < 3; ++a)
-      {
-        lo[a] = std::min(lo[a], p[a] - margin);
-        hi[a] = std::max(hi[a], p[a] + margin);
-      }
-    }
-  }
-}
-
 } // namespace
 
 int vtkPointSetSurfaceProjection::RequestData(
@@ -202,23 +179,7 @@ int vtkPointSetSurfaceProjection::RequestData(
   std::vector<std::uint32_t> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0u);
   pss_vtk::GhostRun run;
-  double margin = 0.0;
-  if (ghosts)
-  {
-    if (!pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run))
-    {
-      return 0;
-    }
-    margin = this->GhostMargin * run.H;
-    double lo[3];
-    double hi[3];
-    GrownBounds(startPoints, order, margin, lo, hi);
-    if (!pss_vtk::PrepareGhostSurface(this, this->Surface, controller, run, lo, hi))
-    {
-      return 0;
-    }
-  }
-  else if (!this->PrepareSurface(cloud))
+  if (ghosts ? !pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run) : !this->PrepareSurface(cloud))
   {
     return 0;
   }
@@ -229,6 +190,7 @@ int vtkPointSetSurfaceProjection::RequestData(
     return 1; // nothing to project: empty outputs
   }
 
+  bool ordered = true;
   try
   {
     // Neighbours are visited together so that they share cached neighbourhoods. The indexed
@@ -244,7 +206,7 @@ int vtkPointSetSurfaceProjection::RequestData(
   catch (const std::exception& e)
   {
     vtkErrorMacro(<< "cannot order the start points: " << e.what());
-    return 0;
+    ordered = false;
   }
   pss::ProjectionOptions options;
   options.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
@@ -253,98 +215,58 @@ int vtkPointSetSurfaceProjection::RequestData(
   options.tolerance = this->Tolerance;
   options.maxTravel = this->MaxTravel;
   StandardArrays arrays(n);
-  // With ghost points, the starts whose projection read beyond this rank's complete region.
-  std::vector<unsigned char> escaped(ghosts ? static_cast<std::size_t>(n) : 0, 0);
-  for (int round = 1;; ++round)
+  if (!ordered && !ghosts)
   {
+    return 0;
+  }
+  // Projects the starts @p ks on the surface as prepared; with ghost points, flags those whose
+  // projection read beyond this rank's complete region. False: this rank cannot project (its
+  // error reported), or the run was aborted (one process only: with ghosts every rank goes on
+  // to the end, so that none waits for it).
+  bool aborted = false;
+  auto project = [&](const std::vector<std::uint32_t>& ks, std::vector<unsigned char>& escaped) {
     const pss::SurfaceDefinition* surface = this->Surface->GetDefinition();
-    bool failed = false; // with ghosts a rank that fails still takes part in the round's reduction
-    if (surface && !order.empty() && !this->BeginProjection(*surface, n))
+    if (!ordered || !this->BeginProjection(*surface, n))
     {
-      if (!ghosts)
-      {
-        return 0;
-      }
-      failed = true;
-      order.clear();
+      return false;
     }
-    if (surface && !order.empty())
+    const pss::PointIndex& index = *this->Surface->GetIndex();
+    pss::Orientation orientation = pss::Orientation::awayFromCentroid(index);
+    if (ghosts)
     {
-      const pss::PointIndex& index = *this->Surface->GetIndex();
-      pss::Orientation orientation = pss::Orientation::awayFromCentroid(index);
-      if (ghosts)
-      {
-        orientation.reference = pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]);
-      }
-      const bool completed =
-        pss::forEachInOrder(order, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
-          const vtkIdType i = static_cast<vtkIdType>(k);
-          double start[3];
-          startPoints->GetPoint(i, start);
-          ws.leftCompleteRegion = false;
-          arrays.Set(i, this->ProjectPoint(i, start, *surface, options, ws), start, index, orientation);
-          if (ghosts)
-          {
-            escaped[k] = ws.leftCompleteRegion ? 1 : 0;
-          }
-        });
-      if (!completed && !ghosts)
-      {
-        return 1; // aborted: leave the outputs empty (with ghosts every rank goes on to the end)
-      }
+      orientation.reference = pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]);
     }
-    else if (ghosts)
+    const bool completed =
+      pss::forEachInOrder(ks, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
+        const vtkIdType i = static_cast<vtkIdType>(k);
+        double start[3];
+        startPoints->GetPoint(i, start);
+        ws.leftCompleteRegion = false;
+        arrays.Set(i, this->ProjectPoint(i, start, *surface, options, ws), start, index, orientation);
+        if (ghosts)
+        {
+          escaped[k] = ws.leftCompleteRegion ? 1 : 0;
+        }
+      });
+    aborted = !completed;
+    return completed || ghosts;
+  };
+  if (ghosts)
+  {
+    this->GhostRounds = pss_vtk::RunGhostRounds(this, this->Surface, controller, run,
+      this->GhostMargin * run.H, std::move(order), static_cast<std::size_t>(n),
+      [startPoints](std::uint32_t k, double x[3]) { startPoints->GetPoint(static_cast<vtkIdType>(k), x); }, project);
+    if (this->GhostRounds == 0)
     {
-      for (std::uint32_t k : order)
-      {
-        escaped[k] = 1; // no cloud point within reach yet
-      }
-    }
-    this->GhostRounds = ghosts ? round : 0;
-    if (!ghosts)
-    {
-      break;
-    }
-    std::vector<std::uint32_t> again;
-    for (std::uint32_t k : order)
-    {
-      if (escaped[k])
-      {
-        again.push_back(k);
-      }
-    }
-    const vtkIdType local[2] = { static_cast<vtkIdType>(again.size()), failed ? 1 : 0 };
-    vtkIdType total[2] = { 0, 0 };
-    controller->AllReduce(local, total, 2, vtkCommunicator::SUM_OP);
-    if (total[1] > 0)
-    {
-      if (!failed)
-      {
-        vtkErrorMacro(<< "another rank failed to begin its projections (see its error)");
-      }
       return 0;
     }
-    if (total[0] == 0)
+  }
+  else
+  {
+    std::vector<unsigned char> none;
+    if (!project(order, none))
     {
-      break;
-    }
-    // The next round's box: twice the margin around the starts to finish. Once it holds the
-    // cloud's bounds no read can leave it, so the rounds end.
-    margin *= 2.0;
-    double lo[3];
-    double hi[3];
-    GrownBounds(startPoints, again, margin, lo, hi);
-    if (!(lo[0] <= hi[0]) && !again.empty())
-    {
-      // Only NaN/Inf starts are left, on a rank without a surface yet: they need one to be
-      // flagged as such, so this rank takes the whole cloud (rare: no cloud point within reach).
-      std::copy(run.Lo, run.Lo + 3, lo);
-      std::copy(run.Hi, run.Hi + 3, hi);
-    }
-    order = std::move(again);
-    if (!pss_vtk::PrepareGhostSurface(this, this->Surface, controller, run, lo, hi))
-    {
-      return 0;
+      return aborted ? 1 : 0; // aborted: leave the outputs empty
     }
   }
   order = std::vector<std::uint32_t>();
@@ -372,12 +294,7 @@ int vtkPointSetSurfaceProjection::RequestData(
   pss_vtk::AddSurfaceFieldData(output, this->Surface);
   if (ghosts)
   {
-    auto rounds = pss_vtk::NewArray<vtkIntArray>("GhostRounds", 1, 1);
-    rounds->SetValue(0, this->GhostRounds);
-    output->GetFieldData()->AddArray(rounds);
-    auto count = pss_vtk::NewArray<vtkIdTypeArray>("GhostPoints", 1, 1);
-    count->SetValue(0, run.Ghosts);
-    output->GetFieldData()->AddArray(count);
+    pss_vtk::AddGhostFieldData(output, this->GhostRounds, run);
   }
   if (!this->AddPointArrays(starts, outPD))
   {
@@ -404,4 +321,5 @@ void vtkPointSetSurfaceProjection::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxTravel: " << this->MaxTravel << "\n";
   os << indent << "SeekMaxima: " << (this->SeekMaxima ? "On" : "Off") << "\n";
   os << indent << "GenerateProjectionLines: " << (this->GenerateProjectionLines ? "On" : "Off") << "\n";
+  os << indent << "GhostMargin: " << this->GhostMargin << "\n";
 }

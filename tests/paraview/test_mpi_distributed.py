@@ -27,10 +27,10 @@ and every vertex and its arrays are bitwise those of the one-process mesh. Cases
             limit, see check_unreadable (no hang; one process refuses, MPI ranks do not)
   empty     bad input: no cloud point on any rank; every rank must fail with the same error
   zeroh     bad input: AutomaticScale off and h = 0; every rank must fail with the same error
-  ghost-*   GhostMargin > 0 (ghost points instead of the gathered cloud; projection and classifier
-            only; h = 0.13 given but in ghost-autoh): ghost-tiled as tiled with margin 4; ghost-narrow margin 0.25, so
-            that projections leave the first box and later rounds must finish them (asserted: a
-            rank takes more than one round); ghost-rank0 the cloud on rank 0 only and start points
+  ghost-*   GhostMargin > 0 (ghost points instead of the gathered cloud; projection, classifier and
+            field sampler, probe and grid; h = 0.13 given but in ghost-autoh): ghost-tiled as tiled with margin 4;
+            ghost-narrow margin 0.25, so that projections and grid samples leave the first box and later rounds
+            must finish them (asserted: a rank takes more than one round); ghost-rank0 the cloud on rank 0 only and start points
             on every rank; ghost-offset and ghost-emptyrank as offset and emptyrank; ghost-autoh the
             automatic h (estimated on rank 0: identical). Their arrays
             must equal one process's to rounding: integers identical, positions and displacements
@@ -70,8 +70,8 @@ problems = []
 POINT_FILTERS = ("projection", "classifier", "sampler")  # outputs: points with GlobalPointIds
 CONCATENATED = ("glyphs", "fits")  # the energy glyphs' two outputs: rank by rank, in sample order
 FILTERS = POINT_FILTERS + ("grid", "glyphs", "mesh")  # grid: the sampler's own image, split by extent
-GHOST_FILTERS = ("projection", "classifier")  # what runs with GhostMargin > 0
-GHOST_H = 0.13  # about the automatic h of the case's sphere, given (ghost runs refuse the automatic one)
+GHOST_FILTERS = POINT_FILTERS + ("grid",)  # what runs with GhostMargin > 0
+GHOST_H = 0.13  # about the automatic h of the case's sphere, given: no gather on rank 0 (ghost-autoh tests that)
 ERRORS = {"empty": "the point cloud is empty", "zeroh": "invalid surface parameters"}
 
 
@@ -232,8 +232,11 @@ def same_bits(a, b):
     return a.shape == b.shape and np.array_equal(a.view(np.uint8), b.view(np.uint8))
 
 
-def compare_grid(directory):
-    """Each rank's part of the sampler's image against the one-process image, bitwise."""
+def compare_grid(directory, h=None, ghost=False):
+    """Each rank's part of the sampler's image against the one-process image, bitwise (ghost: its
+    floats equal to rounding, equal_to_rounding; integers identical)."""
+    largest = {}
+    bitwise = True
     serial = read(output_path(directory, "serial", "grid", 0))
     whole = serial.GetExtent()
     dims = [whole[2 * a + 1] - whole[2 * a] + 1 for a in range(3)]
@@ -253,15 +256,24 @@ def compare_grid(directory):
         for key, a in want.items():
             if key not in got:
                 problems.append("grid: array %s missing on rank %d" % (key, r))
-            elif not same_bits(np.ascontiguousarray(a[block]), got[key].reshape(shape + [-1])):
+                continue
+            a_part = np.ascontiguousarray(a[block])
+            b_part = got[key].reshape(shape + [-1])
+            if ghost and a.dtype.kind == "f":
+                bitwise = equal_to_rounding("grid", key, a_part, b_part, h, largest) and bitwise
+            elif not same_bits(a_part, b_part):
                 problems.append("grid: %s differs on rank %d (extent %r)" % (key, r, e))
         covered[block] = True
     if not covered.all():
         problems.append("grid: the ranks' parts miss %d of %d samples" % (int((~covered).sum()), covered.size))
     else:
-        print("ok   %-10s %d samples in %d parts, %d arrays, bitwise equal" % (
+        print("ok   %-10s %d samples in %d parts, %d arrays, %s" % (
             "grid", covered.size, sum(read(output_path(directory, "parallel", "grid", r)).GetNumberOfPoints() > 0
-                                      for r in range(args.np)), len(want)), flush=True)
+                                      for r in range(args.np)), len(want),
+            "bitwise equal" if bitwise else "equal to rounding"), flush=True)
+        if largest:
+            print("     grid: largest differences %s" % ", ".join("%s %.3g" % kv for kv in sorted(largest.items())),
+                  flush=True)
 
 
 def arrays_of(poly):
@@ -332,6 +344,28 @@ def compare_mesh(directory):
             "mesh", len(seen), len(offsets) - 1, len(want) - 1), flush=True)
 
 
+def equal_to_rounding(name, key, a, b, h, largest):
+    """Ghost runs: float array `key` of filter `name`, one process's a against b: positions and
+    displacements within max(1e-9 h, 4 ulp), angles (degrees) within 1e-5, other values within 1e-9
+    relative; records a failure, or the largest difference in `largest`. True when bitwise equal."""
+    if key in ("Points", "Displacement"):
+        tol = np.maximum(1e-9 * h, 4 * np.spacing(np.abs(a)))
+    elif "Angle" in key:
+        tol = np.full(a.shape, 1e-5)
+    else:
+        tol = np.maximum(1e-9 * np.abs(a), 1e-300)
+    same = (a == b) | (np.isnan(a) & np.isnan(b))  # Inf starts stay where they are
+    with np.errstate(invalid="ignore"):
+        diff = np.where(same, 0.0, np.abs(a - b))
+    bad = ~(same | (diff <= tol))
+    if bad.any():
+        problems.append("%s: %s differs beyond rounding at %d values (largest %g)"
+                        % (name, key, int(bad.sum()), float(np.nanmax(diff))))
+    elif not same_bits(a, b):
+        largest[key] = max(largest.get(key, 0.0), float(np.max(diff)))
+    return same_bits(a, b)
+
+
 def compare(directory, name, h, ghost=False):
     """The ranks' outputs of filter `name` against the one-process output (h: the one-process h;
     ghost: a run with ghost points, equal to rounding)."""
@@ -365,22 +399,7 @@ def compare(directory, name, h, ghost=False):
             continue
         b = got[key][order]
         if a.dtype.kind == "f" and ghost:
-            if key in ("Points", "Displacement"):
-                tol = np.maximum(1e-9 * h, 4 * np.spacing(np.abs(a)))
-            elif "Angle" in key:
-                tol = np.full(a.shape, 1e-5)
-            else:
-                tol = np.maximum(1e-9 * np.abs(a), 1e-300)
-            same = (a == b) | (np.isnan(a) & np.isnan(b))  # Inf starts stay where they are
-            with np.errstate(invalid="ignore"):
-                diff = np.where(same, 0.0, np.abs(a - b))
-            bad = ~(same | (diff <= tol))
-            bitwise = bitwise and same_bits(a, b)
-            if bad.any():
-                problems.append("%s: %s differs beyond rounding at %d values (largest %g)"
-                                % (name, key, int(bad.sum()), float(np.nanmax(diff))))
-            elif not same_bits(a, b):
-                largest[key] = float(np.max(diff))
+            bitwise = equal_to_rounding(name, key, a, b, h, largest) and bitwise
         elif a.dtype.kind == "f":
             if not same_bits(a, b):
                 bitwise = False
@@ -482,14 +501,17 @@ def check_unreadable(directory, serial_log, parallel_log, case):
 
 
 def check_ghost_rounds(parallel_log):
-    """The rounds each rank's projection took (printed by the worker): ghost-narrow must need more than one."""
-    rounds = {int(r): int(k) for r, f, k in re.findall(r"rank (\d+): (\w+) ghost rounds (\d+)", parallel_log)
-              if f == "projection"}
-    print("ok   ghost rounds of the projection by rank: %r" % sorted(rounds.items()), flush=True)
-    if not rounds or min(rounds.values()) < 1:  # ranks without start points have no output to say it
-        problems.append("ghost rounds reported by ranks %r" % rounds)
-    elif args.case == "ghost-narrow" and max(rounds.values()) < 2:
-        problems.append("ghost-narrow: no projection needed a second round (%r): the case tests nothing" % rounds)
+    """The rounds each rank's filters took (printed by the worker): every filter with output must
+    report at least one; in ghost-narrow the projection and the grid must need more than one."""
+    found = re.findall(r"rank (\d+): (\w+) ghost rounds (\d+)", parallel_log)
+    for name in GHOST_FILTERS:
+        rounds = {int(r): int(k) for r, f, k in found if f == name}
+        print("ok   ghost rounds of the %s by rank: %r" % (name, sorted(rounds.items())), flush=True)
+        if not rounds or min(rounds.values()) < 1:  # ranks without points have no output to say it
+            problems.append("%s: ghost rounds reported by ranks %r" % (name, rounds))
+        elif args.case == "ghost-narrow" and name in ("projection", "grid") and max(rounds.values()) < 2:
+            problems.append("ghost-narrow: no %s point needed a second round (%r): the case tests nothing"
+                            % (name, rounds))
 
 
 def check_same_error(parallel_log, message, filters, serial_log=None):
@@ -542,8 +564,9 @@ def main():
     elif ghost:
         check_skipped_reports(serial_log, parallel_log, case)
         h = read(output_path(directory, "serial", "projection", 0)).GetFieldData().GetArray("ScaleFactor").GetValue(0)
-        for name in GHOST_FILTERS:
+        for name in POINT_FILTERS:
             compare(directory, name, h, ghost=True)
+        compare_grid(directory, h, ghost=True)
         check_ghost_rounds(parallel_log)
     else:
         if "unreadable" in case:
