@@ -28,9 +28,7 @@ bool MakeOrientation(int rule, const double referencePoint[3], const double refe
   switch (rule)
   {
     case ORIENT_AWAY_FROM_CENTROID:
-      // pss::Orientation::awayFromCentroid's rule, with the given centroid.
-      out.rule = pss::Orientation::Rule::AwayFromPoint;
-      out.reference = centroid;
+      out = pss::Orientation::awayFrom(centroid);
       return true;
     case ORIENT_AWAY_FROM_POINT:
     {

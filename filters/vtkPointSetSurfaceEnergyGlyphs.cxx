@@ -29,6 +29,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <vector>
 
 vtkStandardNewMacro(vtkPointSetSurfaceEnergyGlyphs);
@@ -118,13 +119,17 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   vtkPolyData* glyphs = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* fits = vtkPolyData::GetData(outputVector, 1);
   this->GlyphScale = 0.0;
-  if (!this->PrepareSurface(cloud))
+  this->GhostRounds = 0;
+  // In a distributed run each rank plots its own samples (its piece of the sample points, or of
+  // the cloud) on the gathered cloud, or with ghost points; sample ids and the global scale are
+  // those of one process.
+  vtkMultiProcessController* controller = this->DistributedController();
+  const bool ghosts = controller && this->GhostMargin > 0.0;
+  pss_vtk::GhostRun run;
+  if (ghosts ? !pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run) : !this->PrepareSurface(cloud))
   {
     return 0;
   }
-  // In a distributed run each rank plots its own samples (its piece of the sample points, or of
-  // the cloud) on the gathered cloud; sample ids and the global scale are those of one process.
-  vtkMultiProcessController* controller = this->DistributedController();
   const vtkIdType sampleCount = samples ? samples->GetNumberOfPoints() : 0;
   const vtkIdType firstSampleId = controller ? pss_vtk::GlobalOffset(controller, sampleCount) : 0;
   const bool perGlyph = this->ScaleMode == SCALE_PER_GLYPH;
@@ -137,29 +142,26 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
     }
     return all;
   };
-  if (sampleCount == 0)
+  if (sampleCount == 0 && !ghosts)
   {
     largestOfAllRanks(0.0);
     return 1; // nothing to plot: empty outputs
   }
 
-  const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
-  const pss::PointIndex& index = *this->Surface->GetIndex();
-  const double h = this->Surface->GetEffectiveScale();
-  const DirectionSet set =
-    surface.dimension() == 2 ? CircleDirections(this->Resolution) : SphereDirections(this->Resolution);
+  const int dimension = ghosts ? run.Dimension : this->Surface->GetDefinition()->dimension();
+  const DirectionSet set = dimension == 2 ? CircleDirections(this->Resolution) : SphereDirections(this->Resolution);
   const std::vector<pss::Vec3>& dirs = set.directions;
   const std::size_t nDirs = dirs.size();
 
   // Samples with finite coordinates (in 2D brought to z = 0, as every core query is).
   std::vector<pss::Vec3> xs;
   std::vector<vtkIdType> sampleIds;
-  const std::vector<pss::Vec3> all = pss_vtk::ToVectors(samples->GetPoints());
+  const std::vector<pss::Vec3> all = pss_vtk::ToVectors(samples ? samples->GetPoints() : nullptr);
   for (std::size_t i = 0; i < all.size(); ++i)
   {
     if (pss::isFinite(all[i]))
     {
-      xs.push_back(index.restrict(all[i]));
+      xs.push_back(dimension == 2 ? pss::Vec3(all[i].x(), all[i].y(), 0.0) : all[i]);
       sampleIds.push_back(firstSampleId + static_cast<vtkIdType>(i));
     }
   }
@@ -171,31 +173,63 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   std::vector<pss::Direction> normals(m);
   std::vector<double> value(m * nDirs, 0.0);
   std::vector<double> logScale(perGlyph ? m * nDirs : 0, 0.0);
-  const bool completed = pss_vtk::ParallelFor(
-                           this, static_cast<vtkIdType>(m),
-                           [&](vtkIdType s, pss::Workspace& ws) { normals[s] = surface.direction(xs[s], ws); }, 0.0,
-                           0.1) &&
-    pss_vtk::ParallelFor(this, static_cast<vtkIdType>(m * nDirs),
-        [&](vtkIdType k, pss::Workspace& ws) {
-          const std::size_t s = static_cast<std::size_t>(k) / nDirs;
-          const std::size_t d = static_cast<std::size_t>(k) % nDirs;
-          if (perGlyph)
-          {
-            const pss::LineSample ls = surface.lineSample(xs[s], dirs[d], ws);
-            value[k] = ls.value;
-            logScale[k] = ls.logScale;
-          }
-          else
-          {
-            value[k] = surface.energy(xs[s], dirs[d], ws);
-          }
-        },
-        0.1, 0.9);
+  auto energyAt = [&](const pss::SurfaceDefinition& surface, std::size_t k, pss::Workspace& ws) {
+    const std::size_t s = k / nDirs;
+    const std::size_t d = k % nDirs;
+    if (perGlyph)
+    {
+      const pss::LineSample ls = surface.lineSample(xs[s], dirs[d], ws);
+      value[k] = ls.value;
+      logScale[k] = ls.logScale;
+    }
+    else
+    {
+      value[k] = surface.energy(xs[s], dirs[d], ws);
+    }
+  };
+  bool completed = true;
+  if (ghosts)
+  {
+    // A glyph at a time, so that each sample knows whether any of its reads left the region.
+    auto plot = [&](const std::vector<std::uint32_t>& ks, std::vector<unsigned char>& escaped) {
+      const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
+      completed = pss::forEachInOrder(ks, pss_vtk::SMPLoop(this), [&](std::size_t s, pss::Workspace& ws) {
+        ws.leftCompleteRegion = false;
+        normals[s] = surface.direction(xs[s], ws);
+        for (std::size_t d = 0; d < nDirs; ++d)
+        {
+          energyAt(surface, s * nDirs + d, ws);
+        }
+        escaped[s] = ws.leftCompleteRegion ? 1 : 0;
+      }) && completed;
+      return true;
+    };
+    std::vector<std::uint32_t> order(m);
+    std::iota(order.begin(), order.end(), 0u);
+    this->GhostRounds = pss_vtk::RunGhostRounds(this, this->Surface, controller, run, this->GhostMargin * run.H,
+      std::move(order), m, [&xs](std::uint32_t k, double x[3]) { std::copy(xs[k].data(), xs[k].data() + 3, x); },
+      plot);
+    if (this->GhostRounds == 0)
+    {
+      return 0;
+    }
+  }
+  else
+  {
+    const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
+    completed = pss_vtk::ParallelFor(
+                  this, static_cast<vtkIdType>(m),
+                  [&](vtkIdType s, pss::Workspace& ws) { normals[s] = surface.direction(xs[s], ws); }, 0.0, 0.1) &&
+      pss_vtk::ParallelFor(this, static_cast<vtkIdType>(m * nDirs),
+        [&](vtkIdType k, pss::Workspace& ws) { energyAt(surface, static_cast<std::size_t>(k), ws); }, 0.1, 0.9);
+  }
   if (!completed)
   {
     largestOfAllRanks(0.0);
     return 1; // aborted: leave the outputs empty
   }
+  // (With ghost points a rank without samples may have no surface of its own.)
+  const double h = ghosts ? run.H : this->Surface->GetEffectiveScale();
 
   // Radius of every glyph point: c e(x, a) (global) or the per-glyph normalization.
   std::vector<double> radius(m * nDirs, 0.0);
@@ -281,7 +315,9 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   auto fitNormal = pss_vtk::NewArray<vtkDoubleArray>("Normal", 0, 3);
   auto fitStability = pss_vtk::NewArray<vtkDoubleArray>("Stability", 0, 1);
   auto fitSample = pss_vtk::NewArray<vtkIdTypeArray>("SampleId", 0, 1);
-  const pss::Orientation orientation = pss::Orientation::awayFromCentroid(index);
+  const pss::Orientation orientation = ghosts
+    ? pss::Orientation::awayFrom(pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]))
+    : pss::Orientation::awayFromCentroid(*this->Surface->GetIndex());
   const double half = this->SegmentLength * h;
   std::vector<vtkIdType> ids;
   for (std::size_t s = 0; s < m; ++s)
@@ -328,7 +364,7 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
       continue;
     }
     pss::Vec3 n = orientation.apply(dir.n.normalized(), x);
-    if (surface.dimension() == 2)
+    if (dimension == 2)
     {
       const pss::Vec3 t(-n.y(), n.x(), 0.0);
       const pss::Vec3 a = x - half * t;
@@ -369,7 +405,7 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   glyphs->GetCellData()->AddArray(glyphSample);
 
   fits->SetPoints(fitPoints);
-  if (surface.dimension() == 2)
+  if (dimension == 2)
   {
     fits->SetLines(fitCells);
   }
@@ -380,6 +416,11 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   fits->GetCellData()->AddArray(fitNormal);
   fits->GetCellData()->AddArray(fitStability);
   fits->GetCellData()->AddArray(fitSample);
+  if (ghosts)
+  {
+    pss_vtk::AddGhostFieldData(glyphs, this->GhostRounds, run);
+    pss_vtk::AddGhostFieldData(fits, this->GhostRounds, run);
+  }
   return 1;
 }
 
@@ -391,4 +432,5 @@ void vtkPointSetSurfaceEnergyGlyphs::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ScaleMode: " << (this->ScaleMode == SCALE_PER_GLYPH ? "PerGlyph" : "Global") << "\n";
   os << indent << "SegmentLength: " << this->SegmentLength << " (h)\n";
   os << indent << "GlyphScale: " << this->GlyphScale << "\n";
+  os << indent << "GhostMargin: " << this->GhostMargin << "\n";
 }

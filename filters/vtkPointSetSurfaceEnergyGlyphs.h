@@ -45,7 +45,9 @@
  * Distributed runs (MPI, a global controller of several processes): every rank plots its own
  * samples (its piece of input 1, or of the cloud) on the cloud gathered from every rank, with
  * SampleId counted over the ranks' pieces in rank order and SCALE_GLOBAL's c taken over every
- * rank's energies, so that the ranks' outputs together are the one-process output.
+ * rank's energies, so that the ranks' outputs together are the one-process output. With
+ * GhostMargin > 0 each rank holds only its own cloud points and ghost points around its samples
+ * (see vtkPointSetSurfaceProjection); the outputs then equal the one-process output to rounding.
  *
  * @sa vtkPointSetSurface vtkPointSetSurfaceProjection
  */
@@ -107,6 +109,17 @@ public:
   /// The c of the last update in SCALE_GLOBAL mode (0 when every energy was 0); 0 in SCALE_PER_GLYPH.
   double GetGlyphScale() const { return this->GlyphScale; }
 
+  ///@{
+  /// Distributed runs only, as vtkPointSetSurfaceProjection's GhostMargin: 0 (default) gathers the
+  /// whole cloud on every rank; > 0 exchanges only the cloud points within this many h of the box
+  /// of a rank's samples, a glyph whose reads leave it being plotted again with a wider box.
+  vtkSetClampMacro(GhostMargin, double, 0.0, 1e6);
+  vtkGetMacro(GhostMargin, double);
+  ///@}
+
+  /// The rounds of ghost exchange of the last distributed update with GhostMargin > 0 (0 otherwise).
+  vtkGetMacro(GhostRounds, int);
+
 protected:
   vtkPointSetSurfaceEnergyGlyphs();
   ~vtkPointSetSurfaceEnergyGlyphs() override;
@@ -121,6 +134,8 @@ protected:
   int ScaleMode = SCALE_GLOBAL;
   double SegmentLength = 1.0;
   double GlyphScale = 0.0;
+  double GhostMargin = 0.0;
+  int GhostRounds = 0;
 
 private:
   vtkPointSetSurfaceEnergyGlyphs(const vtkPointSetSurfaceEnergyGlyphs&) = delete;

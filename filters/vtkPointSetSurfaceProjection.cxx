@@ -231,11 +231,9 @@ int vtkPointSetSurfaceProjection::RequestData(
       return false;
     }
     const pss::PointIndex& index = *this->Surface->GetIndex();
-    pss::Orientation orientation = pss::Orientation::awayFromCentroid(index);
-    if (ghosts)
-    {
-      orientation.reference = pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]);
-    }
+    const pss::Orientation orientation = ghosts
+      ? pss::Orientation::awayFrom(pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]))
+      : pss::Orientation::awayFromCentroid(index);
     const bool completed =
       pss::forEachInOrder(ks, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
         const vtkIdType i = static_cast<vtkIdType>(k);

@@ -27,8 +27,8 @@ and every vertex and its arrays are bitwise those of the one-process mesh. Cases
             limit, see check_unreadable (no hang; one process refuses, MPI ranks do not)
   empty     bad input: no cloud point on any rank; every rank must fail with the same error
   zeroh     bad input: AutomaticScale off and h = 0; every rank must fail with the same error
-  ghost-*   GhostMargin > 0 (ghost points instead of the gathered cloud; projection, classifier and
-            field sampler, probe and grid; h = 0.13 given but in ghost-autoh): ghost-tiled as tiled with margin 4;
+  ghost-*   GhostMargin > 0 (ghost points instead of the gathered cloud; projection, classifier,
+            field sampler (probe and grid) and energy glyphs; h = 0.13 given but in ghost-autoh): ghost-tiled as tiled with margin 4;
             ghost-narrow margin 0.25, so that projections and grid samples leave the first box and later rounds
             must finish them (asserted: a rank takes more than one round); ghost-rank0 the cloud on rank 0 only and start points
             on every rank; ghost-offset and ghost-emptyrank as offset and emptyrank; ghost-autoh the
@@ -70,7 +70,7 @@ problems = []
 POINT_FILTERS = ("projection", "classifier", "sampler")  # outputs: points with GlobalPointIds
 CONCATENATED = ("glyphs", "fits")  # the energy glyphs' two outputs: rank by rank, in sample order
 FILTERS = POINT_FILTERS + ("grid", "glyphs", "mesh")  # grid: the sampler's own image, split by extent
-GHOST_FILTERS = POINT_FILTERS + ("grid",)  # what runs with GhostMargin > 0
+GHOST_FILTERS = POINT_FILTERS + ("grid", "glyphs")  # what runs with GhostMargin > 0: all but the mesh
 GHOST_H = 0.13  # about the automatic h of the case's sphere, given: no gather on rank 0 (ghost-autoh tests that)
 ERRORS = {"empty": "the point cloud is empty", "zeroh": "invalid surface parameters"}
 
@@ -286,8 +286,9 @@ def arrays_of(poly):
     return out
 
 
-def compare_concatenated(directory, name):
-    """The ranks' outputs of `name`, one after the other, against the one-process output."""
+def compare_concatenated(directory, name, h=None, ghost=False):
+    """The ranks' outputs of `name`, one after the other, against the one-process output (ghost:
+    floats equal to rounding, equal_to_rounding)."""
     def everything(poly):
         out = {"point " + k: v for k, v in arrays_of(poly).items()}
         cd = poly.GetCellData()
@@ -297,13 +298,20 @@ def compare_concatenated(directory, name):
     parts = [everything(p) for p in (read(output_path(directory, "parallel", name, r)) for r in range(args.np))
              if p.GetNumberOfPoints() > 0]
     before = len(problems)
+    largest = {}
     for key, a in want.items():
         b = np.concatenate([p[key] for p in parts if key in p]) if parts else a[:0]
-        if not same_bits(a, b):
+        if ghost and a.dtype.kind == "f" and a.shape == b.shape:
+            equal_to_rounding(name, key.split(" ", 1)[1], a, b, h, largest)
+        elif not same_bits(a, b):
             problems.append("%s: %s differs (%d values, one process %d)" % (name, key, len(b), len(a)))
     if len(problems) == before:
-        print("ok   %-10s %d points, %d arrays, in %d parts" % (
-            name, len(want["point Points"]), len(want) - 1, len(parts)), flush=True)
+        print("ok   %-10s %d points, %d arrays, in %d parts%s" % (
+            name, len(want["point Points"]), len(want) - 1, len(parts), ", equal to rounding" if largest else ""),
+            flush=True)
+        if largest:
+            print("     %s: largest differences %s" % (name, ", ".join("%s %.3g" % kv for kv in sorted(largest.items()))),
+                  flush=True)
 
 
 def compare_mesh(directory):
@@ -567,6 +575,8 @@ def main():
         for name in POINT_FILTERS:
             compare(directory, name, h, ghost=True)
         compare_grid(directory, h, ghost=True)
+        for name in CONCATENATED:
+            compare_concatenated(directory, name, h, ghost=True)
         check_ghost_rounds(parallel_log)
     else:
         if "unreadable" in case:

@@ -15,9 +15,14 @@ namespace pss
 
 Orientation Orientation::awayFromCentroid(const PointIndex& index)
 {
+  return awayFrom(index.centroid());
+}
+
+Orientation Orientation::awayFrom(const Vec3& point)
+{
   Orientation o;
   o.rule = Rule::AwayFromPoint;
-  o.reference = index.centroid();
+  o.reference = point;
   return o;
 }
 

@@ -37,6 +37,8 @@ struct Orientation
 
   /// The rule used when nothing is said: away from the centroid of @p index.
   static Orientation awayFromCentroid(const PointIndex& index);
+  /// Away from @p point (awayFromCentroid with a centroid known otherwise, e.g. reduced over MPI ranks).
+  static Orientation awayFrom(const Vec3& point);
   /// n or -n, following the rule at x (n itself when the rule is undecided, i.e. exactly zero).
   Vec3 apply(const Vec3& n, const Vec3& x) const;
 };
