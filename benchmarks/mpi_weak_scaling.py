@@ -17,6 +17,10 @@ With --ghost-margin M > 0 the projection exchanges ghost points instead of gathe
 (GhostMargin): each rank also reports the other ranks' points it held (GhostPoints) and the rounds
 it took, and the one-start projection measures only a tiny exchange (its row is then not the
 overhead; the ghost points are).
+With --mesh the mesher (PointSetSurfaceMesh, default parameters, the same surface) is timed too:
+every rank gathers the cloud and builds the same band, then computes its block of the grid
+corners and of the crossings (pss::StageSplit), so its time at np 2 against np 1 in split mode is
+the mesher's strong scaling (the sequential stages and the gather are repeated on every rank).
 Rank 0 prints one line per rank and a summary; the pieces are written on first use.
 """
 import argparse
@@ -39,6 +43,7 @@ parser.add_argument("--workdir", required=True)
 parser.add_argument("--mode", choices=("weak", "split"), default="weak")
 parser.add_argument("--h", type=float, default=0.001)
 parser.add_argument("--ghost-margin", type=float, default=0.0)
+parser.add_argument("--mesh", action="store_true", help="time the mesher too")
 args = parser.parse_args()
 
 pvs.LoadPlugin(args.plugin, remote=False, ns=globals())
@@ -119,20 +124,26 @@ ghost_rounds = ghost_rounds.GetValue(0) if ghost_rounds else 0
 overhead = PointSetSurfaceProjection(Input=cloud, StartPoints=pvs.OpenDataFile(start_file), **surface)
 overhead_seconds, overhead_cpu = timed(overhead)
 
+mesh_seconds = mesh_cpu = mesh_triangles = 0
+if args.mesh:
+    mesher = PointSetSurfaceMesh(Input=cloud, Variant="Center of Mass", AutomaticScale=0, ScaleFactor=args.h)
+    mesh_seconds, mesh_cpu = timed(mesher)
+    mesh_triangles = mesher.GetClientSideObject().GetOutputDataObject(0).GetNumberOfPolys()
+
 row = vtkDoubleArray()
-row.SetNumberOfValues(8)
+row.SetNumberOfValues(11)
 for i, value in enumerate((projected, project_seconds, overhead_seconds, local, project_cpu, overhead_cpu,
-                           ghost_points, ghost_rounds)):
+                           ghost_points, ghost_rounds, mesh_seconds, mesh_cpu, mesh_triangles)):
     row.SetValue(i, value)
 gathered = vtkDoubleArray()
 controller.Gather(row, gathered, 0)
 if rank == 0:
-    table = vtk_to_numpy(gathered).reshape(ranks, 8)
+    table = vtk_to_numpy(gathered).reshape(ranks, 11)
     total = 0
     print("mode %s, np %d, %d piece(s), h = %g m, ghost margin %g h, backend %s, %d thread(s) per rank"
           % (args.mode, ranks, pieces, args.h, args.ghost_margin, vtkSMPTools.GetBackend(),
              vtkSMPTools.GetEstimatedNumberOfThreads()))
-    for r, (n, seconds, over, cloud_points, cpu, over_cpu, ghosts, rounds) in enumerate(table):
+    for r, (n, seconds, over, cloud_points, cpu, over_cpu, ghosts, rounds, _, _, _) in enumerate(table):
         total += n
         print("rank %d: %d cloud points read, %d projected in %.3f s (%.3f s CPU) = %.0f points/s (%.0f per CPU s); "
               "gather + index %.3f s (%.3f s CPU)%s" % (
@@ -144,3 +155,7 @@ if rank == 0:
           "gather + index %.3f s (%.0f%% of the slowest rank's time)" % (
               total, wall, total / ranks / wall, total / table[:, 4].sum(), table[:, 2].max(),
               100 * table[:, 2].max() / wall))
+    if args.mesh:
+        print("mesh: %d triangles (the ranks' shares) in %.3f s (slowest rank; %s), CPU %s s" % (
+            table[:, 10].sum(), table[:, 8].max(), ", ".join("%.3f" % t for t in table[:, 8]),
+            ", ".join("%.3f" % t for t in table[:, 9])))

@@ -6,6 +6,7 @@
 #include "vtkPointSetSurface.h"
 
 #include "vtkCellArray.h"
+#include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
@@ -23,6 +24,7 @@
 #include "pss/SurfaceMesh.h"
 
 #include <chrono>
+#include <climits>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -223,15 +225,59 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.projection.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.domain.maxDistance = this->MaxDistance;
   options.domain.maxNormalAngle = this->MaxNormalAngle;
+  // In a distributed run every rank holds the gathered cloud and the same band; each computes its
+  // block of the corners and of the crossings, and the blocks are exchanged after each stage.
+  vtkMultiProcessController* controller = this->DistributedController();
+  pss::StageSplit split;
+  bool tooLarge = false;
+  if (controller)
+  {
+    split.part = controller->GetLocalProcessId();
+    split.parts = controller->GetNumberOfProcesses();
+    split.share = [&](std::vector<double>& items, std::size_t width, std::size_t count, bool completed) {
+      int mine = completed ? 1 : 0;
+      int all = 0;
+      controller->AllReduce(&mine, &all, 1, vtkCommunicator::MIN_OP);
+      if (!all)
+      {
+        return false;
+      }
+      if (count * width > static_cast<std::size_t>(INT_MAX)) // the same count on every rank
+      {
+        tooLarge = true;
+        return false;
+      }
+      std::vector<vtkIdType> lengths(static_cast<std::size_t>(split.parts));
+      std::vector<vtkIdType> offsets(lengths.size());
+      for (int r = 0; r < split.parts; ++r)
+      {
+        const pss::StageSplit part{ r, split.parts, nullptr };
+        offsets[static_cast<std::size_t>(r)] = static_cast<vtkIdType>(part.begin(count) * width);
+        lengths[static_cast<std::size_t>(r)] = static_cast<vtkIdType>((part.end(count) - part.begin(count)) * width);
+      }
+      const auto first = items.begin() + offsets[static_cast<std::size_t>(split.part)];
+      const std::vector<double> own(first, first + lengths[static_cast<std::size_t>(split.part)]);
+      controller->AllGatherV(own.data(), items.data(), static_cast<vtkIdType>(own.size()), lengths.data(),
+        offsets.data());
+      return true;
+    };
+  }
   std::optional<pss::SurfaceMesh> mesh;
   pss::MeshTimings t;
   try
   {
-    mesh = pss::extractSurfaceMesh(*this->Surface->GetDefinition(), options, pss_vtk::SMPLoop(this), &t);
+    mesh = pss::extractSurfaceMesh(
+      *this->Surface->GetDefinition(), options, pss_vtk::SMPLoop(this), &t, controller ? &split : nullptr);
   }
   catch (const std::invalid_argument& e)
   {
     vtkErrorMacro(<< e.what());
+    return 0;
+  }
+  if (tooLarge)
+  {
+    vtkErrorMacro(<< "the band's grid corners or crossings exceed one MPI exchange (2^31 - 1 values): use a "
+                     "larger CellSize or a smaller Band");
     return 0;
   }
   if (!mesh)
@@ -254,7 +300,7 @@ int vtkPointSetSurfaceMesher::RequestData(
     output->GetFieldData()->AddArray(a);
   }
   AddStatistics(mesh->statistics, output->GetFieldData());
-  if (vtkMultiProcessController* controller = this->DistributedController())
+  if (controller)
   {
     KeepShareOfCells(output, controller->GetLocalProcessId(), controller->GetNumberOfProcesses());
   }

@@ -37,8 +37,11 @@
  * is bitwise the same on any number of threads.
  *
  * Distributed runs (MPI, a global controller of several processes): every rank gathers the
- * cloud's pieces and extracts the whole one-process mesh (the work is not split: the band's cells
- * and their orientation, hole closing and piece removal are global); each rank then keeps its
+ * cloud's pieces and builds the same band; the two costly stages are split (pss::StageSplit):
+ * each rank evaluates n and g at its block of the grid corners, and projects and classifies its
+ * block of the crossings, and the blocks are exchanged (one AllGatherV each), so every rank has
+ * the one-process values bitwise. The cheap global stages (orientation of n over the band,
+ * contouring, hole closing, piece removal) are repeated on every rank. Each rank then keeps its
  * share of the cells, rank r the cells [r T / N, (r + 1) T / N) of T, with the points they use
  * and `GlobalPointIds`, their ids in the whole mesh. Merged by global id, the ranks' outputs are
  * the one-process mesh, so that a distributed pipeline can render or write it in parallel.

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <optional>
 
 namespace
 {
@@ -147,6 +148,77 @@ TEST(Mesh, SameOnOneAndTwoThreads)
   {
     ASSERT_EQ(one.points[i], two.points[i]) << i; // bitwise
     ASSERT_EQ(one.normals[i], two.normals[i]) << i;
+  }
+}
+
+namespace
+{
+// The mesh of a run split over @p parts processes (pss::StageSplit), simulated in one process:
+// each part's block of a stage is computed by a run of that part which stops at the stage's
+// exchange, the blocks meet in a store, and a last run takes both stages from the store.
+pss::SurfaceMesh splitMesh(const pss::SurfaceDefinition& surface, int parts)
+{
+  std::vector<double> store[2];           // corners, crossings: every part's block
+  std::size_t filled[2] = { 0, 0 };       // values recorded so far
+  auto runPart = [&](int part, std::size_t stopAt) {
+    std::size_t stage = 0;
+    pss::StageSplit split;
+    split.part = part;
+    split.parts = parts;
+    split.share = [&](std::vector<double>& items, std::size_t width, std::size_t count, bool completed) {
+      EXPECT_TRUE(completed);
+      EXPECT_EQ(items.size(), count * width);
+      const std::size_t k = stage++;
+      if (k < stopAt)
+      {
+        items = store[k]; // an earlier stage: complete by now
+        return true;
+      }
+      store[k].resize(items.size());
+      const std::size_t begin = split.begin(count) * width;
+      const std::size_t end = split.end(count) * width;
+      std::copy(items.begin() + begin, items.begin() + end, store[k].begin() + begin);
+      filled[k] += end - begin;
+      return false; // stop here: the other parts' blocks are not known yet
+    };
+    return pss::extractSurfaceMesh(surface, {}, pss::threadLoop(1), nullptr, &split);
+  };
+  for (std::size_t stage = 0; stage < 2; ++stage)
+  {
+    for (int part = 0; part < parts; ++part)
+    {
+      EXPECT_FALSE(runPart(part, stage).has_value()); // a refused exchange stops the run
+    }
+    EXPECT_EQ(filled[stage], store[stage].size()) << "the parts' blocks cover stage " << stage;
+  }
+  const std::optional<pss::SurfaceMesh> mesh = runPart(parts - 1, 2);
+  EXPECT_TRUE(mesh.has_value());
+  return mesh.value_or(pss::SurfaceMesh{});
+}
+} // namespace
+
+// What a distributed mesher does (vtkPointSetSurfaceMesher under MPI): the blocks of the corners
+// and crossings computed apart and exchanged give the one-process mesh, bitwise.
+TEST(Mesh, SplitOverPartsIsTheWholeMesh)
+{
+  const pss::PointIndex index = indexOf(sphereSpec());
+  auto surface = pss::makeSurface(pss::Variant::CenterOfMass, index, pss_test::params(1.0));
+  const pss::SurfaceMesh whole = pss::extractSurfaceMesh(*surface, {}, 1);
+  ASSERT_GT(whole.triangles.size(), 1000u);
+  for (int parts : { 2, 3 })
+  {
+    const pss::SurfaceMesh split = splitMesh(*surface, parts);
+    ASSERT_EQ(split.points.size(), whole.points.size()) << parts;
+    ASSERT_EQ(split.triangles, whole.triangles) << parts;
+    for (std::size_t i = 0; i < whole.points.size(); ++i)
+    {
+      ASSERT_EQ(split.points[i], whole.points[i]) << parts << " parts, vertex " << i; // bitwise
+      ASSERT_EQ(split.normals[i], whole.normals[i]) << i;
+      ASSERT_EQ(split.evidence[i].label, whole.evidence[i].label) << i;
+      ASSERT_EQ(split.evidence[i].projection.iterations, whole.evidence[i].projection.iterations) << i;
+      ASSERT_EQ(split.evidence[i].projection.direction.stability, whole.evidence[i].projection.direction.stability) << i;
+      ASSERT_EQ(split.evidence[i].normalAngle, whole.evidence[i].normalAngle) << i;
+    }
   }
 }
 

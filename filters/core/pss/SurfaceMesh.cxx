@@ -530,8 +530,108 @@ void SurfaceMesher::classifyCrossing(std::size_t i, Workspace& ws)
   Evidence[i] = classifyStart(Surface, Crossings[i].point, Options.projection, Options.domain, ws, &Normals);
 }
 
-std::optional<SurfaceMesh> extractSurfaceMesh(
-  const SurfaceDefinition& surface, const MeshOptions& options, const ParallelLoop& loop, MeshTimings* timings)
+namespace
+{
+void putDirection(double*& out, const Direction& d)
+{
+  *out++ = d.n.x();
+  *out++ = d.n.y();
+  *out++ = d.n.z();
+  *out++ = d.stability;
+  *out++ = d.defined ? 1.0 : 0.0;
+}
+
+Direction takeDirection(const double*& in)
+{
+  Direction d;
+  d.n = Vec3(in[0], in[1], in[2]);
+  d.stability = in[3];
+  d.defined = in[4] != 0.0;
+  in += 5;
+  return d;
+}
+} // namespace
+
+std::vector<double> SurfaceMesher::cornerValues() const
+{
+  std::vector<double> out(Values.size() * CornerWidth);
+  double* o = out.data();
+  for (const CornerValue& v : Values)
+  {
+    *o++ = v.n.x();
+    *o++ = v.n.y();
+    *o++ = v.n.z();
+    *o++ = v.g;
+    *o++ = v.defined ? 1.0 : 0.0;
+  }
+  return out;
+}
+
+void SurfaceMesher::setCornerValues(const std::vector<double>& values)
+{
+  const double* in = values.data();
+  for (CornerValue& v : Values)
+  {
+    v.n = Vec3(in[0], in[1], in[2]);
+    v.g = in[3];
+    v.defined = in[4] != 0.0;
+    in += CornerWidth;
+  }
+}
+
+std::vector<double> SurfaceMesher::crossingEvidence() const
+{
+  std::vector<double> out(Evidence.size() * EvidenceWidth);
+  double* o = out.data();
+  for (const DomainEvidence& e : Evidence)
+  {
+    const ProjectionResult& p = e.projection;
+    *o++ = static_cast<double>(e.label);
+    *o++ = p.point.x();
+    *o++ = p.point.y();
+    *o++ = p.point.z();
+    putDirection(o, p.direction);
+    putDirection(o, p.startDirection);
+    *o++ = p.energy;
+    *o++ = p.iterations;
+    *o++ = p.converged ? 1.0 : 0.0;
+    *o++ = p.lastStep;
+    *o++ = static_cast<double>(p.reason);
+    *o++ = static_cast<double>(p.type);
+    *o++ = e.distanceToCloud;
+    *o++ = e.normalAngle;
+    *o++ = e.startAngle;
+    *o++ = e.startStability;
+  }
+  return out;
+}
+
+void SurfaceMesher::setCrossingEvidence(const std::vector<double>& values)
+{
+  const double* in = values.data();
+  for (DomainEvidence& e : Evidence)
+  {
+    ProjectionResult& p = e.projection;
+    e.label = static_cast<DomainLabel>(static_cast<int>(*in++));
+    p.point = Vec3(in[0], in[1], in[2]);
+    in += 3;
+    p.direction = takeDirection(in);
+    p.startDirection = takeDirection(in);
+    p.energy = *in++;
+    p.iterations = static_cast<int>(*in++);
+    p.converged = *in++ != 0.0;
+    p.lastStep = *in++;
+    p.reason = static_cast<StopReason>(static_cast<int>(*in++));
+    p.type = static_cast<ExtremumType>(static_cast<int>(*in++));
+    e.distanceToCloud = *in++;
+    e.normalAngle = *in++;
+    e.startAngle = *in++;
+    e.startStability = *in++;
+  }
+}
+
+std::optional<SurfaceMesh> extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options,
+  const ParallelLoop& loop, MeshTimings* timings, const StageSplit* split)
 {
   MeshTimings local;
   MeshTimings& t = timings ? *timings : local;
@@ -543,16 +643,36 @@ std::optional<SurfaceMesh> extractSurfaceMesh(
   };
   SurfaceMesher mesher(surface, options);
   lap(t.band);
-  // The two parallel stages: one call of a mesher method per index, through the caller's loop.
-  auto each = [&loop, &mesher](std::size_t n, LoopShare share, void (SurfaceMesher::*stage)(std::size_t, Workspace&)) {
-    return loop(n, share, [&](std::size_t begin, std::size_t end, Workspace& ws) {
-      for (std::size_t i = begin; i < end; ++i)
+  // The two parallel stages: one call of a mesher method per index (of this part's block, with a
+  // split), through the caller's loop.
+  auto each = [&](std::size_t n, LoopShare share, void (SurfaceMesher::*stage)(std::size_t, Workspace&)) {
+    const std::size_t first = split ? split->begin(n) : 0;
+    const std::size_t last = split ? split->end(n) : n;
+    return loop(last - first, share, [&](std::size_t begin, std::size_t end, Workspace& ws) {
+      for (std::size_t i = first + begin; i < first + end; ++i)
       {
         (mesher.*stage)(i, ws);
       }
     });
   };
-  if (!each(mesher.gridVertexCount(), LoopShare(0.0, 0.45), &SurfaceMesher::evaluateVertex))
+  // With a split every part takes part in each exchange, aborted or not, so none waits in vain.
+  auto shared = [&](bool completed, std::vector<double> (SurfaceMesher::*get)() const,
+                  void (SurfaceMesher::*set)(const std::vector<double>&), std::size_t width, std::size_t count) {
+    if (!split)
+    {
+      return completed;
+    }
+    std::vector<double> items = (mesher.*get)();
+    if (!split->share(items, width, count, completed))
+    {
+      return false;
+    }
+    (mesher.*set)(items);
+    return true;
+  };
+  if (!shared(each(mesher.gridVertexCount(), LoopShare(0.0, 0.45), &SurfaceMesher::evaluateVertex),
+        &SurfaceMesher::cornerValues, &SurfaceMesher::setCornerValues, SurfaceMesher::CornerWidth,
+        mesher.gridVertexCount()))
   {
     return std::nullopt;
   }
@@ -561,7 +681,9 @@ std::optional<SurfaceMesh> extractSurfaceMesh(
   lap(t.orient);
   mesher.contour();
   lap(t.contour);
-  if (!each(mesher.crossingCount(), LoopShare(0.5, 0.98), &SurfaceMesher::classifyCrossing))
+  if (!shared(each(mesher.crossingCount(), LoopShare(0.5, 0.98), &SurfaceMesher::classifyCrossing),
+        &SurfaceMesher::crossingEvidence, &SurfaceMesher::setCrossingEvidence, SurfaceMesher::EvidenceWidth,
+        mesher.crossingCount()))
   {
     return std::nullopt;
   }

@@ -52,6 +52,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -129,6 +130,26 @@ struct SurfaceMesh
 };
 
 /**
+ * A split of the mesher's two parallel stages over cooperating processes (an MPI run where every
+ * process holds the whole cloud): each process computes its part of a stage's items, a
+ * contiguous block, then share() hands every process every part. An item is computed alike
+ * wherever it is (it depends on the cloud and its position only), so the mesh is bitwise the one
+ * of a single process, with each stage's work divided by the number of parts.
+ */
+struct StageSplit
+{
+  int part = 0;  ///< this process's part, in [0, parts)
+  int parts = 1;
+  /// Called by every part after each stage with its @p count items of @p width doubles each, of
+  /// which this part filled [begin(count), end(count)); fills in the other parts' items. Collective:
+  /// @p completed says whether this part finished its items (false: the user aborted), and it
+  /// returns true only when every part completed and the exchange succeeded, so all stop together.
+  std::function<bool(std::vector<double>& items, std::size_t width, std::size_t count, bool completed)> share;
+  std::size_t begin(std::size_t count) const { return count * static_cast<std::size_t>(part) / static_cast<std::size_t>(parts); }
+  std::size_t end(std::size_t count) const { return count * static_cast<std::size_t>(part + 1) / static_cast<std::size_t>(parts); }
+};
+
+/**
  * Runs the stages of the file comment. Construct (validates and sizes the band, throwing
  * std::invalid_argument with the cell count when it is absurd), then call evaluateVertex() for
  * every index below gridVertexCount(), orient(), contour(), classifyCrossing() for every index
@@ -147,6 +168,15 @@ public:
   std::size_t crossingCount() const { return Crossings.size(); }
   void classifyCrossing(std::size_t i, Workspace& ws);
   SurfaceMesh finish(Workspace& ws);
+
+  /// The results of evaluateVertex() (CornerWidth doubles per corner) and of classifyCrossing()
+  /// (EvidenceWidth per crossing) as flat arrays, and back: what a StageSplit exchanges.
+  static constexpr std::size_t CornerWidth = 5;
+  static constexpr std::size_t EvidenceWidth = 24;
+  std::vector<double> cornerValues() const;
+  void setCornerValues(const std::vector<double>& values);
+  std::vector<double> crossingEvidence() const;
+  void setCrossingEvidence(const std::vector<double>& values);
 
 private:
   using Key = std::uint64_t;
@@ -223,10 +253,11 @@ struct MeshTimings
 /**
  * All stages, the two parallel ones through @p loop (the corners' values, then the crossings'
  * projections: about 45% and 50% of the work): the core's one-call entry point. Returns nothing
- * when the loop stopped early (the user aborted). Fills @p timings when given.
+ * when the loop stopped early (the user aborted; with @p split, when any part did). Fills
+ * @p timings when given. With @p split this process computes only its part of those two stages.
  */
-std::optional<SurfaceMesh> extractSurfaceMesh(
-  const SurfaceDefinition& surface, const MeshOptions& options, const ParallelLoop& loop, MeshTimings* timings = nullptr);
+std::optional<SurfaceMesh> extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options,
+  const ParallelLoop& loop, MeshTimings* timings = nullptr, const StageSplit* split = nullptr);
 
 /// The same on @p threads threads (0 = all cores).
 SurfaceMesh extractSurfaceMesh(
