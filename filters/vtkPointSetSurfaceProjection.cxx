@@ -7,9 +7,7 @@
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
-#include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
-#include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -23,7 +21,6 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <exception>
 #include <numeric>
