@@ -365,6 +365,13 @@ bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMult
       return false;
     }
   }
+  // Every rank, whatever it holds: a rank that asks for no ghost points never prepares a surface,
+  // and must not wait in a collective that the ranks refusing the parameters never reach.
+  if (!surface->CheckParameters(run.Dimension, run.H))
+  {
+    vtkErrorWithObjectMacro(algorithm, << "cannot define the surface: " << surface->GetLastError());
+    return false;
+  }
   const double skipped = total[0] - total[1];
   if (skipped > 0.0)
   {

@@ -100,14 +100,13 @@ bool vtkPointSetSurface::PreparePiece(
 {
   this->PreparedCloud = nullptr;
   // The parameters first, so that every rank fails alike whatever its piece holds.
-  if (dimension != 2 && dimension != 3)
+  if (!this->CheckParameters(dimension, h))
   {
-    return this->Fail("Dimension must be Auto (0), 2 or 3, not 1");
+    return this->Fail(this->LastError);
   }
   std::unique_ptr<pss::PointIndex> index;
   try
   {
-    this->Parameters(h).validate();
     if (points.empty())
     {
       // Nothing to define: the caller waits for ghost points.
@@ -133,6 +132,25 @@ bool vtkPointSetSurface::PreparePiece(
     return false;
   }
   this->LastError.clear();
+  return true;
+}
+
+bool vtkPointSetSurface::CheckParameters(int dimension, double h)
+{
+  if (dimension != 2 && dimension != 3)
+  {
+    this->LastError = "Dimension must be Auto (0), 2 or 3, not " + std::to_string(dimension);
+    return false;
+  }
+  try
+  {
+    this->Parameters(h).validate();
+  }
+  catch (const std::exception& e)
+  {
+    this->LastError = std::string("invalid surface parameters: ") + e.what();
+    return false;
+  }
   return true;
 }
 

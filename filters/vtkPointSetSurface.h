@@ -188,6 +188,14 @@ public:
     const std::vector<double>& points, int dimension, const double lo[3], const double hi[3], double h);
 #endif
 
+  /**
+   * Checks the parameters for a cloud of @p dimension (2 or 3) at scale @p h, reading no point and
+   * leaving the prepared surface alone: false with GetLastError() set. What PreparePiece refuses
+   * before its points; a distributed run calls it on every rank, whatever each holds, so that all
+   * fail alike.
+   */
+  bool CheckParameters(int dimension, double h);
+
 protected:
   vtkPointSetSurface();
   ~vtkPointSetSurface() override;

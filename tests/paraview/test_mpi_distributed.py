@@ -32,7 +32,8 @@ and every vertex and its arrays are bitwise those of the one-process mesh. Cases
             ghost-narrow margin 0.25, so that projections and grid samples leave the first box and later rounds
             must finish them (asserted: a rank takes more than one round); ghost-rank0 the cloud on rank 0 only and start points
             on every rank; ghost-offset and ghost-emptyrank as offset and emptyrank; ghost-autoh the
-            automatic h (estimated on rank 0: identical). Their arrays
+            automatic h (estimated on rank 0: identical); ghost-empty and ghost-zeroh as empty and zeroh
+            (ghost-zeroh with a rank that holds no point, so asks for no ghost point, and must fail too). Their arrays
             must equal one process's to rounding: integers identical, positions and displacements
             within max(1e-9 h, 4 ulp), angles (degrees, through acos) within 1e-5, other doubles
             within 1e-9 relative (the largest differences are printed)
@@ -72,7 +73,8 @@ CONCATENATED = ("glyphs", "fits")  # the energy glyphs' two outputs: rank by ran
 FILTERS = POINT_FILTERS + ("grid", "glyphs", "mesh")  # grid: the sampler's own image, split by extent
 GHOST_FILTERS = POINT_FILTERS + ("grid", "glyphs")  # what runs with GhostMargin > 0: all but the mesh
 GHOST_H = 0.13  # about the automatic h of the case's sphere, given: no gather on rank 0 (ghost-autoh tests that)
-ERRORS = {"empty": "the point cloud is empty", "zeroh": "invalid surface parameters"}
+ERRORS = {"empty": "the point cloud is empty", "zeroh": "invalid surface parameters",
+          "ghost-empty": "the point cloud is empty", "ghost-zeroh": "invalid surface parameters"}
 
 
 def write_pieces(directory, name, xyz, piece_of, pieces):
@@ -177,6 +179,11 @@ def make_case(directory):
             case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
         elif args.case == "ghost-emptyrank":
             case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np - 1), args.np - 1)
+        elif args.case == "ghost-empty":
+            case["cloud"] = write_pieces(directory, "cloud", xyz[:0], np.zeros(0, dtype=np.int64), args.np)
+        elif args.case == "ghost-zeroh":  # and one rank without points, which asks for no ghosts
+            case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np - 1), args.np - 1)
+            case["surface"] = {"AutomaticScale": 0, "ScaleFactor": 0.0}
         elif args.case == "ghost-autoh":
             xyz[[5, 2000]] = [[np.inf, 0, 0], [0, 0, np.nan]]
             case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
@@ -532,7 +539,9 @@ def check_same_error(parallel_log, message, filters, serial_log=None):
                 by_rank.setdefault(rank, []).append(cls)
         return by_rank
     if serial_log is None:
-        want = ["vtkPointSetSurface" + {"projection": "Projection", "classifier": "DomainClassifier"}[f] for f in filters]
+        want = ["vtkPointSetSurface" + {"projection": "Projection", "classifier": "DomainClassifier",
+                                        "sampler": "FieldSampler", "grid": "FieldSampler",
+                                        "glyphs": "EnergyGlyphs"}[f] for f in filters]
     else:
         want = failing(serial_log).get(0, [])
     if len(want) != len(filters):
