@@ -510,16 +510,14 @@ int RunGhostRounds(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMult
   GrownBounds(pointAt, ks, margin, lo, hi);
   for (int round = 1;; ++round)
   {
-    if (!PrepareGhostSurface(algorithm, surface, controller, run, lo, hi))
-    {
-      return 0;
-    }
-    bool failed = false; // a rank that fails still takes part in the round's reduction
-    if (surface->GetDefinition() && !ks.empty())
+    // A rank that fails (to build its piece's surface, or to evaluate) still takes part in the
+    // round's reduction, so that every rank stops with it.
+    bool failed = !PrepareGhostSurface(algorithm, surface, controller, run, lo, hi);
+    if (!failed && surface->GetDefinition() && !ks.empty())
     {
       failed = !evaluate(ks, escaped);
     }
-    else
+    else if (!failed)
     {
       for (std::uint32_t k : ks)
       {

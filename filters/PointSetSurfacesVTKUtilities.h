@@ -145,8 +145,8 @@ using GhostEvaluation = std::function<bool(const std::vector<std::uint32_t>& ks,
  * points grown by @p margin and evaluates them all; each later round doubles the margin around
  * the points whose evaluation escaped, on any rank, and evaluates those again. Once a box holds
  * the cloud's bounds no read can leave it, so the rounds end. A rank without a surface yet (no
- * cloud point in its box) counts its points as escaped. When @p evaluate fails on one rank every
- * rank fails. Returns the rounds taken, 0 after an error of @p algorithm.
+ * cloud point in its box) counts its points as escaped. When preparing its surface or @p evaluate
+ * fails on one rank, every rank fails. Returns the rounds taken, 0 after an error of @p algorithm.
  */
 int RunGhostRounds(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMultiProcessController* controller,
   GhostRun& run, double margin, std::vector<std::uint32_t> ks, std::size_t n, const GhostPointAt& pointAt,
