@@ -279,7 +279,8 @@ int vtkPointSetSurfaceFieldSampler::RequestUpdateExtent(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
 {
   // The whole cloud, always: every sample may depend on any cloud point. One process reads all
-  // of it; in a distributed run each rank reads its piece and RequestData gathers the pieces.
+  // of it; in a distributed run each rank reads its piece and RequestData gathers the pieces (or,
+  // with GhostMargin, exchanges the ghost points its samples need).
   vtkMultiProcessController* controller = pss_vtk::MultiProcessController();
   const int piece = controller ? controller->GetLocalProcessId() : 0;
   const int pieces = controller ? controller->GetNumberOfProcesses() : 1;
