@@ -161,7 +161,7 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   {
     if (pss::isFinite(all[i]))
     {
-      xs.push_back(dimension == 2 ? pss::Vec3(all[i].x(), all[i].y(), 0.0) : all[i]);
+      xs.push_back(pss::PointIndex::restrictTo(dimension, all[i]));
       sampleIds.push_back(firstSampleId + static_cast<vtkIdType>(i));
     }
   }

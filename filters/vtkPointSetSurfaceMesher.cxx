@@ -152,16 +152,17 @@ void AddStatistics(const pss::MeshStatistics& st, vtkFieldData* fd)
 
 namespace
 {
-// Keeps the cells [rank * n / ranks, (rank + 1) * n / ranks) of @p mesh (triangles, or polylines
-// in 2D) and the points they use, with their point data and `GlobalPointIds`, the points' ids in
-// the whole mesh: the ranks' shares, merged by global id, are the whole mesh again.
-void KeepShareOfCells(vtkPolyData* mesh, int rank, int ranks)
+// Keeps this rank's block of the cells of @p mesh (triangles, or polylines in 2D; the blocks of
+// @p split, as for the corners and crossings) and the points they use, with their point data and
+// `GlobalPointIds`, the points' ids in the whole mesh: the ranks' shares, merged by global id, are
+// the whole mesh again.
+void KeepShareOfCells(vtkPolyData* mesh, const pss::StageSplit& split)
 {
   const bool triangles = mesh->GetNumberOfPolys() > 0;
   vtkCellArray* cells = triangles ? mesh->GetPolys() : mesh->GetLines();
-  const vtkIdType n = cells ? cells->GetNumberOfCells() : 0;
-  const vtkIdType first = n * rank / ranks;
-  const vtkIdType last = n * (rank + 1) / ranks;
+  const std::size_t n = cells ? static_cast<std::size_t>(cells->GetNumberOfCells()) : 0;
+  const vtkIdType first = static_cast<vtkIdType>(split.begin(n));
+  const vtkIdType last = static_cast<vtkIdType>(split.end(n));
   std::vector<vtkIdType> newId(static_cast<std::size_t>(mesh->GetNumberOfPoints()), -1);
   auto globalIds = pss_vtk::NewArray<vtkIdTypeArray>("GlobalPointIds", 0, 1);
   vtkNew<vtkCellArray> kept;
@@ -302,7 +303,7 @@ int vtkPointSetSurfaceMesher::RequestData(
   AddStatistics(mesh->statistics, output->GetFieldData());
   if (controller)
   {
-    KeepShareOfCells(output, controller->GetLocalProcessId(), controller->GetNumberOfProcesses());
+    KeepShareOfCells(output, split);
   }
   return 1;
 }

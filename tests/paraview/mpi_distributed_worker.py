@@ -5,8 +5,9 @@
 
 Reads DIR/case.json (the cloud .pvtp, optional start points .pvtp, surface settings), applies the
 projection, the domain classifier, the field sampler (probing the start points, or the cloud) and
-the energy glyphs (at the start points, or the cloud) and the mesher (all but the mesher, with
-GhostMargin set, when the case has a "ghost_margin"; each rank then prints its ghost rounds), and writes each rank's own output of each
+the energy glyphs (at the start points, or the cloud) and the mesher (when the case has a
+"ghost_margin": every filter but the mesher, with GhostMargin set; each rank then prints its ghost
+rounds), and writes each rank's own output of each
 filter to DIR/NAME_<filter>_<rank>.vtp (double coordinates, binary: bit-exact; no file for an
 empty output; the glyphs' two outputs as `glyphs` and `fits`); and the sampler's own grid, each
 rank's part of it, to DIR/NAME_grid_<rank>.vti. Ends normally (pvbatch then finalizes MPI on every rank); the driver judges the files

@@ -392,11 +392,6 @@ std::vector<std::uint32_t> PointIndex::visitingOrder() const
   return order;
 }
 
-Vec3 PointIndex::restrict(const Vec3& x) const
-{
-  return Dimension == 2 ? Vec3(x.x(), x.y(), 0.0) : x;
-}
-
 std::pair<std::size_t, double> PointIndex::nearest(const Vec3& x) const
 {
   if (Points.empty())

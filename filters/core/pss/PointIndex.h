@@ -69,7 +69,9 @@ public:
   std::uint64_t serial() const { return Serial; }
 
   /// Drops z in 2D; leaves 3D points untouched.
-  Vec3 restrict(const Vec3& x) const;
+  Vec3 restrict(const Vec3& x) const { return restrictTo(Dimension, x); }
+  /// The same for a cloud of @p dimension, without an index (e.g. before a distributed run has one).
+  static Vec3 restrictTo(int dimension, const Vec3& x) { return dimension == 2 ? Vec3(x.x(), x.y(), 0.0) : x; }
 
   /// Nearest indexed point to @p x: (index, squared distance). Requires !empty().
   std::pair<std::size_t, double> nearest(const Vec3& x) const;
