@@ -3,13 +3,18 @@
 #include "PointSetSurfacesSMP.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkCommunicator.h"
+#include "vtkOutputWindow.h"
 #include "vtkObject.h"
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIntArray.h"
 #include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkTypeInt32Array.h"
 #include "vtkTypeInt64Array.h"
 #include "vtkMultiProcessController.h"
@@ -23,7 +28,12 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <limits>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <utility>
 
 #include "pss/PointIndex.h"
 
@@ -120,8 +130,8 @@ void PrintSurface(ostream& os, vtkIndent indent, vtkPointSetSurface* surface)
   }
 }
 
-bool PrepareSurface(
-  vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPointSet* cloud, const char* what, bool gathered)
+bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPointSet* cloud, const char* what,
+  bool gathered, bool coordinateOrder)
 {
   if (!surface)
   {
@@ -141,7 +151,7 @@ bool PrepareSurface(
                                           "process (pvpython, or pvbatch without mpiexec), or on the merged cloud");
     return false;
   }
-  if (!surface->Prepare(cloud))
+  if (!surface->Prepare(cloud, coordinateOrder))
   {
     vtkErrorWithObjectMacro(algorithm, << "cannot define the surface" << what << ": " << surface->GetLastError());
     return false;
@@ -162,17 +172,18 @@ vtkMultiProcessController* MultiProcessController()
 }
 
 bool PrepareDistributedSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
-  vtkMultiProcessController* controller, vtkPointSet* cloud, const char* what, vtkSmartPointer<vtkPolyData>& gathered)
+  vtkMultiProcessController* controller, vtkPointSet* cloud, const char* what, vtkSmartPointer<vtkPolyData>& gathered,
+  bool coordinateOrder)
 {
   if (!controller)
   {
     gathered = nullptr;
-    return PrepareSurface(algorithm, surface, cloud, what);
+    return PrepareSurface(algorithm, surface, cloud, what, false, coordinateOrder);
   }
   // The whole cloud on every rank makes h, centroid, bounds and every neighbourhood those of the
   // one-process run by construction, whatever the split.
   gathered = GatherCloud(algorithm, controller, cloud);
-  return gathered && PrepareSurface(algorithm, surface, gathered, what, true);
+  return gathered && PrepareSurface(algorithm, surface, gathered, what, true, coordinateOrder);
 }
 
 vtkSmartPointer<vtkPolyData> GatherCloud(
@@ -596,4 +607,151 @@ vtkIdType GlobalOffset(vtkMultiProcessController* controller, vtkIdType count)
   return offset;
 }
 
+namespace
+{
+
+// Every error message vtkOutputWindow displays in this process, numbered, the last few kept; and
+// the upstream errors recorded against data objects (by address and modification time, which no
+// later object at the same address can share, since modification times only grow).
+struct ErrorLog
+{
+  std::mutex Lock;
+  vtkOutputWindow* Window = nullptr; // the instance observed (an application may replace it)
+  std::uint64_t Count = 0;
+  std::deque<std::pair<std::uint64_t, std::string>> Recent;
+  std::map<vtkDataObject*, std::pair<vtkMTimeType, std::string>> Failed;
+
+  static ErrorLog& Get()
+  {
+    static ErrorLog log;
+    return log;
+  }
+
+  static void OnError(vtkObject*, unsigned long, void*, void* callData)
+  {
+    // The text is "ERROR: In file, line n\nvtkClass (0x...): message": keep its last line.
+    std::string text = callData ? static_cast<const char*>(callData) : "";
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r'))
+    {
+      text.pop_back();
+    }
+    const std::size_t cut = text.rfind('\n');
+    if (cut != std::string::npos)
+    {
+      text = text.substr(cut + 1);
+    }
+    ErrorLog& log = Get();
+    const std::lock_guard<std::mutex> guard(log.Lock);
+    log.Recent.emplace_back(++log.Count, text);
+    if (log.Recent.size() > 16)
+    {
+      log.Recent.pop_front();
+    }
+  }
+
+  // Observes the output window in use (once per instance).
+  void Observe()
+  {
+    vtkOutputWindow* window = vtkOutputWindow::GetInstance();
+    const std::lock_guard<std::mutex> guard(Lock);
+    if (window == Window || !window)
+    {
+      return;
+    }
+    vtkNew<vtkCallbackCommand> callback;
+    callback->SetCallback(&ErrorLog::OnError);
+    window->AddObserver(vtkCommand::ErrorEvent, callback);
+    Window = window;
+  }
+};
+
+} // namespace
+
+void UpstreamErrorWatch::Arm()
+{
+  ErrorLog& log = ErrorLog::Get();
+  log.Observe();
+  const std::lock_guard<std::mutex> guard(log.Lock);
+  this->Mark = log.Count;
+  this->Armed = true;
 }
+
+std::string UpstreamErrorWatch::Check(const std::vector<vtkDataObject*>& inputs)
+{
+  ErrorLog& log = ErrorLog::Get();
+  const std::lock_guard<std::mutex> guard(log.Lock);
+  std::string error;
+  if (this->Armed)
+  {
+    // Every error since Arm() (the last 16 at most): a reader's own summary often follows the
+    // error of a part of it that failed first.
+    for (const auto& entry : log.Recent)
+    {
+      if (entry.first > this->Mark)
+      {
+        error += (error.empty() ? "" : "; ") + entry.second;
+      }
+    }
+    this->Armed = false;
+  }
+  for (vtkDataObject* input : inputs)
+  {
+    if (!input)
+    {
+      continue;
+    }
+    if (!error.empty())
+    {
+      log.Failed[input] = { input->GetMTime(), error };
+      continue;
+    }
+    const auto found = log.Failed.find(input);
+    if (found != log.Failed.end() && found->second.first == input->GetMTime())
+    {
+      error = found->second.second;
+    }
+  }
+  return error;
+}
+
+bool AgreeOnInputs(vtkAlgorithm* algorithm, vtkMultiProcessController* controller, const std::string& upstreamError)
+{
+  const int local = upstreamError.empty() ? 0 : 1;
+  int failed = 0;
+  controller->AllReduce(&local, &failed, 1, vtkCommunicator::SUM_OP);
+  if (failed == 0)
+  {
+    return true;
+  }
+  if (local)
+  {
+    vtkErrorWithObjectMacro(algorithm, << "the pipeline upstream reported an error on this rank (" << upstreamError
+                                       << "), so this rank's piece of the input may be incomplete: every rank stops");
+  }
+  else
+  {
+    vtkErrorWithObjectMacro(algorithm, << "the pipeline upstream reported an error on " << failed
+                                       << " other rank(s) (see their errors): every rank stops");
+  }
+  return false;
+}
+
+bool UpstreamSucceededEverywhere(vtkAlgorithm* algorithm, vtkInformationVector** inputVector,
+  vtkMultiProcessController* controller, UpstreamErrorWatch& watch)
+{
+  std::vector<vtkDataObject*> inputs;
+  for (int port = 0; port < algorithm->GetNumberOfInputPorts(); ++port)
+  {
+    for (int c = 0; c < inputVector[port]->GetNumberOfInformationObjects(); ++c)
+    {
+      inputs.push_back(inputVector[port]->GetInformationObject(c)->Get(vtkDataObject::DATA_OBJECT()));
+    }
+  }
+  // Checked in every run (also in one process), so that the watch is disarmed and what it saw is
+  // recorded; only a distributed run refuses on it.
+  const std::string error = watch.Check(inputs);
+  return !controller || AgreeOnInputs(algorithm, controller, error);
+}
+
+}
+

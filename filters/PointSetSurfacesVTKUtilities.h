@@ -17,9 +17,11 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 class vtkAlgorithm;
+class vtkInformationVector;
 class vtkDataObject;
 class vtkMultiProcessController;
 class vtkObject;
@@ -65,9 +67,10 @@ void PrintSurface(ostream& os, vtkIndent indent, vtkPointSetSurface* surface);
  * returning false, and warning when cloud points with NaN/Inf coordinates were left out.
  * Unless @p gathered says that @p cloud is already the whole cloud of every rank (GatherCloud),
  * an MPI run of more than one process is refused: each rank would take its piece for the whole.
+ * @p coordinateOrder: vtkPointSetSurface::Prepare(cloud, coordinateOrder).
  */
 bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPointSet* cloud, const char* what = "",
-  bool gathered = false);
+  bool gathered = false, bool coordinateOrder = false);
 
 /// The global vtkMultiProcessController when this process is one of several (an MPI run of more
 /// than one process), else nullptr.
@@ -80,7 +83,8 @@ vtkMultiProcessController* MultiProcessController();
  * surface is prepared on @p cloud and @p gathered released.
  */
 bool PrepareDistributedSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
-  vtkMultiProcessController* controller, vtkPointSet* cloud, const char* what, vtkSmartPointer<vtkPolyData>& gathered);
+  vtkMultiProcessController* controller, vtkPointSet* cloud, const char* what, vtkSmartPointer<vtkPolyData>& gathered,
+  bool coordinateOrder = false);
 
 /**
  * Collective over @p controller: every rank's @p cloud points (nullptr counts as none) as one
@@ -155,6 +159,43 @@ int RunGhostRounds(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMult
 /// Field data `GhostRounds` (@p rounds) and `GhostPoints` (the other ranks' points this rank held
 /// in its last round: its memory overhead) of a filter's @p output after RunGhostRounds.
 void AddGhostFieldData(vtkDataObject* output, int rounds, const GhostRun& run);
+
+/**
+ * Notices the errors that the pipeline upstream of a distributed filter reports on this rank
+ * (through vtkOutputWindow, whose messages it counts). Why: a reader that cannot read its piece
+ * may still report success with fewer points (VTK 9.2's XML P-readers do), and the other ranks
+ * would then compute over part of the cloud, silently. Arm() in RequestUpdateExtent, which the
+ * executive calls before the upstream RequestData; Check() in RequestData.
+ */
+class UpstreamErrorWatch
+{
+public:
+  /// Errors reported from now until Check() come from the pipeline upstream.
+  void Arm();
+  /**
+   * The errors reported since Arm() (the last line of each, "vtkClass (0x...): text", joined by
+   * "; "), which are then recorded against each of @p inputs; else the error recorded earlier, by any filter of
+   * this process, against one of @p inputs still unchanged (so that a filter added later, whose
+   * upstream does not execute again, still sees it); else empty.
+   */
+  std::string Check(const std::vector<vtkDataObject*>& inputs);
+
+private:
+  std::uint64_t Mark = 0;
+  bool Armed = false;
+};
+
+/**
+ * Collective over @p controller: true on every rank when no rank's @p upstreamError (from
+ * UpstreamErrorWatch::Check) is set; otherwise false on every rank after an error of
+ * @p algorithm, naming the upstream error on the ranks that had one.
+ */
+bool AgreeOnInputs(vtkAlgorithm* algorithm, vtkMultiProcessController* controller, const std::string& upstreamError);
+
+/// Collective over @p controller (when not nullptr; else true at once): AgreeOnInputs on what
+/// @p watch finds against every input of @p algorithm (@p inputVector, as RequestData has it).
+bool UpstreamSucceededEverywhere(vtkAlgorithm* algorithm, vtkInformationVector** inputVector,
+  vtkMultiProcessController* controller, UpstreamErrorWatch& watch);
 
 /// Unless @p pd has global ids already, gives its @p n tuples the global ids first, first + 1, ...
 /// as `GlobalPointIds` (the distributed filters' outputs, gathered, then match one process's).

@@ -46,6 +46,11 @@ bool vtkPointSetSurface::Fail(const std::string& message)
 
 bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
 {
+  return this->Prepare(cloud, false);
+}
+
+bool vtkPointSetSurface::Prepare(vtkPointSet* cloud, bool coordinateOrder)
+{
   vtkMTimeType cloudTime = 0;
   if (cloud)
   {
@@ -56,7 +61,8 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
     }
   }
   const vtkMTimeType stamp = std::max(cloudTime, this->GetMTime());
-  if (this->Definition && cloud == this->PreparedCloud && stamp <= this->PreparedTime)
+  if (this->Definition && cloud == this->PreparedCloud && stamp <= this->PreparedTime &&
+    coordinateOrder == this->PreparedCoordinateOrder)
   {
     return true;
   }
@@ -80,6 +86,7 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
   try
   {
     index = std::make_unique<pss::PointIndex>(std::move(points), dimension, threads);
+    index->setCoordinateOrder(coordinateOrder);
   }
   catch (const std::exception& e)
   {
@@ -92,6 +99,7 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
   this->LastError.clear();
   this->PreparedCloud = cloud;
   this->PreparedTime = stamp;
+  this->PreparedCoordinateOrder = coordinateOrder;
   return true;
 }
 
@@ -122,6 +130,8 @@ bool vtkPointSetSurface::PreparePiece(
     }
     index = std::make_unique<pss::PointIndex>(std::move(vectors), dimension, pss_vtk::CoreThreads());
     index->setCompleteRegion(pss::Vec3(lo[0], lo[1], lo[2]), pss::Vec3(hi[0], hi[1], hi[2]));
+    // Which points a rank holds must not change a bit of its sums.
+    index->setCoordinateOrder(true);
   }
   catch (const std::exception& e)
   {

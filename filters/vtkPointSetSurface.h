@@ -174,6 +174,14 @@ public:
   const pss::PointIndex* GetIndex() const { return this->Index.get(); }
 
   /**
+   * Prepare() that, with @p coordinateOrder, sums every neighbourhood in the order of its points'
+   * coordinates (pss::PointIndex::setCoordinateOrder): what the filters do when their GhostMargin
+   * is above 0, in one process as on every rank, so that a run with ghost points equals the
+   * one-process run bitwise. A surface prepared in one order is prepared again for the other.
+   */
+  bool Prepare(vtkPointSet* cloud, bool coordinateOrder);
+
+  /**
    * Prepare() for one rank of a distributed run that holds only part of the cloud: @p points
    * (x, y, z of each) are its piece plus ghost points, every cloud point inside the box [@p lo,
    * @p hi] (sides at +-inf are open) and some outside; @p dimension and @p h are the whole
@@ -224,6 +232,7 @@ private:
   std::unique_ptr<pss::SurfaceDefinition> Definition;
   vtkPointSet* PreparedCloud = nullptr; // identity only, never dereferenced after Prepare()
   vtkMTimeType PreparedTime = 0;
+  bool PreparedCoordinateOrder = false;
   std::string LastError;
   double EffectiveScale = 0.0;
   int EffectiveDimension = 3;

@@ -11,6 +11,7 @@
 vtkCxxSetObjectMacro(vtkPointSetSurfaceAlgorithm, Surface, vtkPointSetSurface);
 
 vtkPointSetSurfaceAlgorithm::vtkPointSetSurfaceAlgorithm()
+  : UpstreamWatch(std::make_unique<pss_vtk::UpstreamErrorWatch>())
 {
   this->Surface = vtkPointSetSurface::New();
 }
@@ -40,15 +41,28 @@ int vtkPointSetSurfaceAlgorithm::FillInputPortInformation(int port, vtkInformati
   return 1;
 }
 
+int vtkPointSetSurfaceAlgorithm::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  this->UpstreamWatch->Arm();
+  return this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
+}
+
+bool vtkPointSetSurfaceAlgorithm::UpstreamSucceededEverywhere(
+  vtkInformationVector** inputVector, vtkMultiProcessController* controller)
+{
+  return pss_vtk::UpstreamSucceededEverywhere(this, inputVector, controller, *this->UpstreamWatch);
+}
+
 vtkMultiProcessController* vtkPointSetSurfaceAlgorithm::DistributedController() const
 {
   return this->SupportsDistributedRun() ? pss_vtk::MultiProcessController() : nullptr;
 }
 
-bool vtkPointSetSurfaceAlgorithm::PrepareSurface(vtkPointSet* cloud, const char* what)
+bool vtkPointSetSurfaceAlgorithm::PrepareSurface(vtkPointSet* cloud, const char* what, bool coordinateOrder)
 {
   return pss_vtk::PrepareDistributedSurface(
-    this, this->Surface, this->DistributedController(), cloud, what, this->GatheredCloud);
+    this, this->Surface, this->DistributedController(), cloud, what, this->GatheredCloud, coordinateOrder);
 }
 
 void vtkPointSetSurfaceAlgorithm::PrintSelf(ostream& os, vtkIndent indent)

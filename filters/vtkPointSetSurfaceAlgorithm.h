@@ -21,10 +21,16 @@
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h" // for vtkSmartPointer
 
+#include <memory> // for std::unique_ptr
+
 class vtkMultiProcessController;
 class vtkPointSet;
 class vtkPointSetSurface;
 class vtkPolyData;
+namespace pss_vtk
+{
+class UpstreamErrorWatch;
+}
 
 class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceAlgorithm : public vtkPolyDataAlgorithm
 {
@@ -49,6 +55,15 @@ protected:
   ~vtkPointSetSurfaceAlgorithm() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  /// Arms UpstreamWatch: errors until RequestData come from the pipeline upstream.
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /**
+   * Collective in a distributed update (@p controller not nullptr): false on every rank, after an
+   * error, when the pipeline upstream reported an error on any rank during this update (e.g. a
+   * reader that could not read its piece but returned the others). Call first in RequestData.
+   */
+  bool UpstreamSucceededEverywhere(vtkInformationVector** inputVector, vtkMultiProcessController* controller);
 
   /**
    * Prepares the surface on @p cloud; on failure reports an error ("cannot define the
@@ -56,8 +71,10 @@ protected:
    * coordinates were left out. In a distributed run (DistributedController()) it is collective:
    * the surface is prepared on every rank's cloud gathered, so every rank gets the one-process
    * surface, or the same error; other filters refuse a run of more than one process.
+   * @p coordinateOrder: neighbourhoods summed in coordinate order (what a filter whose
+   * GhostMargin is above 0 asks, so that its one-process run equals its runs with ghost points).
    */
-  bool PrepareSurface(vtkPointSet* cloud, const char* what = "");
+  bool PrepareSurface(vtkPointSet* cloud, const char* what = "", bool coordinateOrder = false);
 
   /**
    * Whether this filter gives the one-process result in an MPI run of several processes, each
@@ -75,6 +92,8 @@ protected:
   vtkSmartPointer<vtkPolyData> GatheredCloud;
 
 private:
+  std::unique_ptr<pss_vtk::UpstreamErrorWatch> UpstreamWatch;
+
   vtkPointSetSurfaceAlgorithm(const vtkPointSetSurfaceAlgorithm&) = delete;
   void operator=(const vtkPointSetSurfaceAlgorithm&) = delete;
 };

@@ -126,7 +126,9 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   vtkMultiProcessController* controller = this->DistributedController();
   const bool ghosts = controller && this->GhostMargin > 0.0;
   pss_vtk::GhostRun run;
-  if (ghosts ? !pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run) : !this->PrepareSurface(cloud))
+  if (!this->UpstreamSucceededEverywhere(inputVector, controller) ||
+    (ghosts ? !pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run)
+            : !this->PrepareSurface(cloud, "", this->GhostMargin > 0.0)))
   {
     return 0;
   }

@@ -66,6 +66,7 @@ void RequestPiece(vtkInformation* info, int piece, int pieces)
 }
 
 vtkPointSetSurfaceFieldSampler::vtkPointSetSurfaceFieldSampler()
+  : UpstreamWatch(std::make_unique<pss_vtk::UpstreamErrorWatch>())
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(1);
@@ -281,6 +282,7 @@ int vtkPointSetSurfaceFieldSampler::RequestUpdateExtent(
   // The whole cloud, always: every sample may depend on any cloud point. One process reads all
   // of it; in a distributed run each rank reads its piece and RequestData gathers the pieces (or,
   // with GhostMargin, exchanges the ghost points its samples need).
+  this->UpstreamWatch->Arm(); // errors from here to RequestData are the pipeline upstream's
   vtkMultiProcessController* controller = pss_vtk::MultiProcessController();
   const int piece = controller ? controller->GetLocalProcessId() : 0;
   const int pieces = controller ? controller->GetNumberOfProcesses() : 1;
@@ -355,6 +357,10 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
                   << " (MPI): use AWAY_FROM_CENTROID or ALONG_DIRECTION, or run in one process");
     return 0;
   }
+  if (!pss_vtk::UpstreamSucceededEverywhere(this, inputVector, controller, *this->UpstreamWatch))
+  {
+    return 0;
+  }
   this->GhostRounds = 0;
   const bool ghosts = controller && this->GhostMargin > 0.0;
   pss_vtk::GhostRun run;
@@ -366,7 +372,7 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
     }
   }
   else if (!pss_vtk::PrepareDistributedSurface(
-             this, this->Surface, controller, cloud, " from the source", this->GatheredCloud))
+             this, this->Surface, controller, cloud, " from the source", this->GatheredCloud, this->GhostMargin > 0.0))
   {
     return 0;
   }

@@ -125,10 +125,17 @@
 #include "vtkDataSetAlgorithm.h"
 #include "vtkSmartPointer.h" // for vtkSmartPointer
 
+#include <memory> // for std::unique_ptr
+
 class vtkImageData;
 class vtkPointSet;
 class vtkPointSetSurface;
 class vtkPolyData;
+
+namespace pss_vtk
+{
+class UpstreamErrorWatch;
+}
 
 class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceFieldSampler : public vtkDataSetAlgorithm
 {
@@ -270,6 +277,8 @@ protected:
   vtkPointSetSurface* Surface = nullptr;
   /// Every rank's cloud gathered by the last distributed update: the prepared surface refers to it.
   vtkSmartPointer<vtkPolyData> GatheredCloud;
+  /// Armed in RequestUpdateExtent, checked in RequestData (vtkPointSetSurfaceAlgorithm's reason).
+  std::unique_ptr<pss_vtk::UpstreamErrorWatch> UpstreamWatch;
   int OrientationMode = AWAY_FROM_CENTROID;
   double ReferencePoint[3] = { 0.0, 0.0, 0.0 };
   double ReferenceDirection[3] = { 0.0, 0.0, 1.0 };

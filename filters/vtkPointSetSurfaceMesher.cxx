@@ -208,7 +208,8 @@ int vtkPointSetSurfaceMesher::RequestData(
 {
   vtkPointSet* cloud = vtkPointSet::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  if (!this->PrepareSurface(cloud))
+  vtkMultiProcessController* controller = this->DistributedController();
+  if (!this->UpstreamSucceededEverywhere(inputVector, controller) || !this->PrepareSurface(cloud))
   {
     return 0;
   }
@@ -228,7 +229,6 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.domain.maxNormalAngle = this->MaxNormalAngle;
   // In a distributed run every rank holds the gathered cloud and the same band; each computes its
   // block of the corners and of the crossings, and the blocks are exchanged after each stage.
-  vtkMultiProcessController* controller = this->DistributedController();
   pss::StageSplit split;
   bool tooLarge = false;
   if (controller)

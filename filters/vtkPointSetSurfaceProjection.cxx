@@ -176,7 +176,9 @@ int vtkPointSetSurfaceProjection::RequestData(
   std::vector<std::uint32_t> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0u);
   pss_vtk::GhostRun run;
-  if (ghosts ? !pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run) : !this->PrepareSurface(cloud))
+  if (!this->UpstreamSucceededEverywhere(inputVector, controller) ||
+    (ghosts ? !pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run)
+            : !this->PrepareSurface(cloud, "", this->GhostMargin > 0.0)))
   {
     return 0;
   }

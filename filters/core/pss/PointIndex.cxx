@@ -141,6 +141,44 @@ void PointIndex::setCompleteRegion(const Vec3& lo, const Vec3& hi)
   CompleteHi = hi;
 }
 
+void PointIndex::setCoordinateOrder(bool on)
+{
+  CoordinateOrder = on;
+  if (!on)
+  {
+    CoordinateRanks = {};
+    ByCoordinateRank = {};
+    return;
+  }
+  ByCoordinateRank.resize(Points.size());
+  std::iota(ByCoordinateRank.begin(), ByCoordinateRank.end(), 0u);
+  // A total order on the values: -0.0 before +0.0, so that points whose terms differ only in the
+  // sign of a zero are still told apart; equal points (duplicates) by index, which cannot change
+  // a sum since their terms are the same.
+  const auto less = [](double a, double b) { return a < b || (a == b && std::signbit(a) && !std::signbit(b)); };
+  std::sort(ByCoordinateRank.begin(), ByCoordinateRank.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const Vec3& p = Points[a];
+    const Vec3& q = Points[b];
+    for (int d = 0; d < 3; ++d)
+    {
+      if (less(p[d], q[d]))
+      {
+        return true;
+      }
+      if (less(q[d], p[d]))
+      {
+        return false;
+      }
+    }
+    return a < b;
+  });
+  CoordinateRanks.resize(Points.size());
+  for (std::size_t r = 0; r < ByCoordinateRank.size(); ++r)
+  {
+    CoordinateRanks[ByCoordinateRank[r]] = static_cast<std::uint32_t>(r);
+  }
+}
+
 bool PointIndex::holdsBall(const Vec3& c, double r) const
 {
   // Written so that a NaN radius or centre counts as outside (and an open side never limits).

@@ -65,6 +65,20 @@ public:
   /// query of that ball sees exactly the points the whole cloud has there.
   bool holdsBall(const Vec3& c, double r) const;
 
+  /**
+   * Orders the points of every neighbourhood by their coordinates (x, then y, then z), not by
+   * their place in this index, when @p on. A neighbourhood's sums then add the same terms in the
+   * same order in any index that holds the same points around it: a rank's piece plus its ghost
+   * points gives bitwise what the whole cloud gives. Costs a sort of the points once and of the
+   * candidates at each k-d tree fetch (see CandidateCache::fetch). Off by default.
+   */
+  void setCoordinateOrder(bool on);
+  bool coordinateOrder() const { return CoordinateOrder; }
+  /// With coordinateOrder(): point @p i's place in the coordinate order (equal points, whose
+  /// terms are equal, are ranked by index), and the point at place @p r.
+  std::uint32_t coordinateRank(std::size_t i) const { return CoordinateRanks[i]; }
+  std::uint32_t pointAtCoordinateRank(std::uint32_t r) const { return ByCoordinateRank[r]; }
+
   /// A number no other PointIndex of this process has: a safe cache key (addresses get reused).
   std::uint64_t serial() const { return Serial; }
 
@@ -113,6 +127,9 @@ private:
   std::vector<std::uint32_t> OriginalIds; // fits: at most 2^32 - 2 points
   std::size_t Skipped = 0;
   std::uint64_t Serial = 0;
+  bool CoordinateOrder = false;
+  std::vector<std::uint32_t> CoordinateRanks;   // with CoordinateOrder: rank of point i
+  std::vector<std::uint32_t> ByCoordinateRank;  // and its inverse
   Vec3 Centroid = Vec3::Zero();
   Vec3 BoundsMin = Vec3::Zero();
   Vec3 BoundsMax = Vec3::Zero();

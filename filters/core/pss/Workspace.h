@@ -43,6 +43,7 @@ struct CandidateCache
   Eigen::ArrayXd px, py, pz;
   Eigen::Index count = 0;
   bool reusable = false; ///< the fetched ball is exact, so later queries may rely on it
+  std::vector<std::uint64_t> ranks, rankScratch; ///< scratch of a fetch in coordinate order
 
   /// True when every point within sqrt(dmin(y)^2 + band) of y is among the candidates (with
   /// @p extra > 0: for every query within extra of y).
