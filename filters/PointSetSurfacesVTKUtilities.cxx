@@ -717,22 +717,24 @@ std::string UpstreamErrorWatch::Check(const std::vector<vtkDataObject*>& inputs)
 bool AgreeOnInputs(vtkAlgorithm* algorithm, vtkMultiProcessController* controller, const std::string& upstreamError)
 {
   const int local = upstreamError.empty() ? 0 : 1;
-  int failed = 0;
-  controller->AllReduce(&local, &failed, 1, vtkCommunicator::SUM_OP);
-  if (failed == 0)
+  std::vector<int> failed(static_cast<std::size_t>(controller->GetNumberOfProcesses()));
+  controller->AllGather(&local, failed.data(), 1);
+  std::ostringstream ranks;
+  for (std::size_t r = 0; r < failed.size(); ++r)
+  {
+    if (failed[r])
+    {
+      ranks << (ranks.tellp() > 0 ? ", " : "") << r;
+    }
+  }
+  if (ranks.tellp() == 0)
   {
     return true;
   }
-  if (local)
-  {
-    vtkErrorWithObjectMacro(algorithm, << "the pipeline upstream reported an error on this rank (" << upstreamError
-                                       << "), so this rank's piece of the input may be incomplete: every rank stops");
-  }
-  else
-  {
-    vtkErrorWithObjectMacro(algorithm, << "the pipeline upstream reported an error on " << failed
-                                       << " other rank(s) (see their errors): every rank stops");
-  }
+  // The same words on every rank; the upstream error itself is in the log of the rank(s) named.
+  vtkErrorWithObjectMacro(algorithm, << "the pipeline upstream reported an error on rank(s) " << ranks.str()
+                                     << " during this update, so their pieces of the input may be incomplete: every "
+                                        "rank stops (see the error in those ranks' log)");
   return false;
 }
 

@@ -187,8 +187,8 @@ private:
 
 /**
  * Collective over @p controller: true on every rank when no rank's @p upstreamError (from
- * UpstreamErrorWatch::Check) is set; otherwise false on every rank after an error of
- * @p algorithm, naming the upstream error on the ranks that had one.
+ * UpstreamErrorWatch::Check) is set; otherwise false on every rank after the same error of
+ * @p algorithm on each, naming the ranks that had one (their logs hold the upstream error).
  */
 bool AgreeOnInputs(vtkAlgorithm* algorithm, vtkMultiProcessController* controller, const std::string& upstreamError);
 

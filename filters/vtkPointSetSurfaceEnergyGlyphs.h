@@ -47,7 +47,8 @@
  * SampleId counted over the ranks' pieces in rank order and SCALE_GLOBAL's c taken over every
  * rank's energies, so that the ranks' outputs together are the one-process output. With
  * GhostMargin > 0 each rank holds only its own cloud points and ghost points around its samples
- * (see vtkPointSetSurfaceProjection); the outputs then equal the one-process output to rounding.
+ * (see vtkPointSetSurfaceProjection); the outputs are then bitwise the one-process output with
+ * the same GhostMargin.
  *
  * @sa vtkPointSetSurface vtkPointSetSurfaceProjection
  */

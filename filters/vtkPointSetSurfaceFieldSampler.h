@@ -105,7 +105,8 @@
  * other ranks' points inside the box of its samples grown by GhostMargin * h, and samples whose
  * evaluation reads beyond that box are evaluated again with a box grown by twice the margin (as
  * vtkPointSetSurfaceProjection does; the grid's geometry comes from the bounds and h reduced over
- * the ranks). Results then equal the one-process output to rounding, not bitwise.
+ * the ranks). Results are then bitwise the one-process output with the same GhostMargin (both
+ * sum neighbourhoods in coordinate order).
  *
  * Errors (vtkErrorMacro, the update fails, no output): empty cloud or cloud without a finite
  * point, h <= 0 (AutomaticScale off and ScaleFactor <= 0), an invalid reference direction or

@@ -23,7 +23,9 @@
 
 #include "pss/SurfaceMesh.h"
 
+#include <algorithm>
 #include <chrono>
+#include <functional>
 #include <climits>
 #include <optional>
 #include <sstream>
@@ -203,13 +205,52 @@ void KeepShareOfCells(vtkPolyData* mesh, const pss::StageSplit& split)
 }
 }
 
+namespace
+{
+
+// Every rank's occupied cell keys, merged (a band that depends on no rank's split). False, with
+// @p tooLarge, beyond one MPI message.
+bool GatherCellKeys(vtkMultiProcessController* controller, const std::vector<std::uint64_t>& own,
+  std::vector<std::uint64_t>& all, bool& tooLarge)
+{
+  const int ranks = controller->GetNumberOfProcesses();
+  const vtkIdType length = static_cast<vtkIdType>(own.size());
+  std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks));
+  controller->AllGather(&length, lengths.data(), 1);
+  std::vector<vtkIdType> offsets(lengths.size());
+  vtkIdType total = 0;
+  for (std::size_t r = 0; r < lengths.size(); ++r)
+  {
+    offsets[r] = total;
+    total += lengths[r];
+  }
+  if (total > vtkIdType(INT_MAX))
+  {
+    tooLarge = true;
+    return false;
+  }
+  // Keys are below 2^60, so they travel as vtkIdType (64-bit) unchanged.
+  const std::vector<vtkIdType> mine(own.begin(), own.end());
+  std::vector<vtkIdType> received(static_cast<std::size_t>(total));
+  controller->AllGatherV(mine.data(), received.data(), length, lengths.data(), offsets.data());
+  all.assign(received.begin(), received.end());
+  return true;
+}
+
+} // namespace
+
 int vtkPointSetSurfaceMesher::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkPointSet* cloud = vtkPointSet::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkMultiProcessController* controller = this->DistributedController();
-  if (!this->UpstreamSucceededEverywhere(inputVector, controller) || !this->PrepareSurface(cloud))
+  const bool ghosts = controller && this->GhostMargin > 0.0;
+  this->GhostRounds = 0;
+  pss_vtk::GhostRun run;
+  if (!this->UpstreamSucceededEverywhere(inputVector, controller) ||
+    (ghosts ? !pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run)
+            : !this->PrepareSurface(cloud, "", this->GhostMargin > 0.0)))
   {
     return 0;
   }
@@ -227,8 +268,8 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.projection.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.domain.maxDistance = this->MaxDistance;
   options.domain.maxNormalAngle = this->MaxNormalAngle;
-  // In a distributed run every rank holds the gathered cloud and the same band; each computes its
-  // block of the corners and of the crossings, and the blocks are exchanged after each stage.
+  // In a distributed run every rank builds the same band; each computes its block of the corners,
+  // of the crossings and of the holes' centres, and the blocks are exchanged after each stage.
   pss::StageSplit split;
   bool tooLarge = false;
   if (controller)
@@ -265,10 +306,18 @@ int vtkPointSetSurfaceMesher::RequestData(
   }
   std::optional<pss::SurfaceMesh> mesh;
   pss::MeshTimings t;
+  bool failed = false;
   try
   {
-    mesh = pss::extractSurfaceMesh(
-      *this->Surface->GetDefinition(), options, pss_vtk::SMPLoop(this), &t, controller ? &split : nullptr);
+    if (ghosts)
+    {
+      mesh = this->MeshWithGhostPoints(controller, run, options, split, t, tooLarge, failed);
+    }
+    else
+    {
+      mesh = pss::extractSurfaceMesh(
+        *this->Surface->GetDefinition(), options, pss_vtk::SMPLoop(this), &t, controller ? &split : nullptr);
+    }
   }
   catch (const std::invalid_argument& e)
   {
@@ -277,8 +326,12 @@ int vtkPointSetSurfaceMesher::RequestData(
   }
   if (tooLarge)
   {
-    vtkErrorMacro(<< "the band's grid corners or crossings exceed one MPI exchange (2^31 - 1 values): use a "
+    vtkErrorMacro(<< "the band's cells, grid corners or crossings exceed one MPI exchange (2^31 - 1 values): use a "
                      "larger CellSize or a smaller Band");
+    return 0;
+  }
+  if (failed)
+  {
     return 0;
   }
   if (!mesh)
@@ -293,7 +346,21 @@ int vtkPointSetSurfaceMesher::RequestData(
          << t.contour << " s, projection " << t.projection << " s, finish " << t.finish << " s, output " << write
          << " s";
   this->TimingReport = timing.str();
-  pss_vtk::AddSurfaceFieldData(output, this->Surface);
+  if (ghosts)
+  {
+    // The one-process h and dimension; the rank's last surface holds only part of the cloud.
+    auto scale = pss_vtk::NewArray<vtkDoubleArray>("ScaleFactor", 1, 1);
+    scale->SetValue(0, run.H);
+    output->GetFieldData()->AddArray(scale);
+    auto dimension = pss_vtk::NewArray<vtkIntArray>("Dimension", 1, 1);
+    dimension->SetValue(0, run.Dimension);
+    output->GetFieldData()->AddArray(dimension);
+    pss_vtk::AddGhostFieldData(output, this->GhostRounds, run);
+  }
+  else
+  {
+    pss_vtk::AddSurfaceFieldData(output, this->Surface);
+  }
   for (const auto& entry : { std::make_pair("CellSize", this->CellSize), std::make_pair("Band", this->Band) })
   {
     auto a = pss_vtk::NewArray<vtkDoubleArray>(entry.first, 1, 1);
@@ -306,6 +373,75 @@ int vtkPointSetSurfaceMesher::RequestData(
     KeepShareOfCells(output, split);
   }
   return 1;
+}
+
+std::optional<pss::SurfaceMesh> vtkPointSetSurfaceMesher::MeshWithGhostPoints(vtkMultiProcessController* controller,
+  pss_vtk::GhostRun& run, const pss::MeshOptions& options, const pss::StageSplit& split, pss::MeshTimings& t,
+  bool& tooLarge, bool& failed)
+{
+  const auto start = std::chrono::steady_clock::now();
+  // Sized from the reduced bounds and h (the same frame on every rank), so it throws alike.
+  const pss::MeshFrame frame{ run.Dimension, run.H, pss::Vec3(run.Lo[0], run.Lo[1], run.Lo[2]),
+    pss::Vec3(run.Hi[0], run.Hi[1], run.Hi[2]), pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]) };
+  pss::SurfaceMesher mesher(frame, options);
+  std::vector<pss::Vec3> own(run.Own.size() / 3);
+  for (std::size_t i = 0; i < own.size(); ++i)
+  {
+    own[i] = pss::Vec3(run.Own[3 * i], run.Own[3 * i + 1], run.Own[3 * i + 2]);
+  }
+  std::vector<std::uint64_t> occupied;
+  if (!GatherCellKeys(controller, mesher.cellKeysOf(own), occupied, tooLarge))
+  {
+    return std::nullopt;
+  }
+  own = {};
+  mesher.buildBand(std::move(occupied)); // the same union on every rank: throws alike
+  t.band = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Each split stage: this rank's block evaluated with ghost points in rounds, then every rank's
+  // blocks exchanged.
+  return pss::runMeshStages(
+    mesher,
+    [&](const pss::MeshStage& stage) {
+      std::vector<std::uint32_t> ks;
+      for (std::size_t k = split.begin(stage.count); k < split.end(stage.count); ++k)
+      {
+        ks.push_back(static_cast<std::uint32_t>(k));
+      }
+      const int rounds = pss_vtk::RunGhostRounds(this, this->Surface, controller, run, this->GhostMargin * run.H,
+        std::move(ks), stage.count,
+        [&](std::uint32_t k, double x[3]) {
+          const pss::Vec3 p = stage.position(k);
+          x[0] = p.x();
+          x[1] = p.y();
+          x[2] = p.z();
+        },
+        [&](const std::vector<std::uint32_t>& todo, std::vector<unsigned char>& escaped) {
+          // No cache of the cloud's normals: one read beyond this rank's region must flag every
+          // evaluation that uses it. Aborting is not offered: every rank goes on, so none waits.
+          mesher.useSurface(*this->Surface->GetDefinition(), false);
+          pss::forEachInOrder(todo, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
+            ws.leftCompleteRegion = false;
+            (mesher.*stage.evaluate)(k, ws);
+            escaped[k] = ws.leftCompleteRegion ? 1 : 0;
+          });
+          return true;
+        });
+      if (rounds == 0)
+      {
+        failed = true;
+        return false;
+      }
+      this->GhostRounds = std::max(this->GhostRounds, rounds);
+      std::vector<double> items = (mesher.*stage.get)();
+      if (!split.share(items, stage.width, stage.count, true))
+      {
+        failed = !tooLarge;
+        return false;
+      }
+      (mesher.*stage.set)(items);
+      return true;
+    },
+    t);
 }
 
 void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
@@ -324,4 +460,5 @@ void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinPieceArea: " << this->MinPieceArea << "\n";
   os << indent << "CoveredPieceArea: " << this->CoveredPieceArea << "\n";
   os << indent << "MaximumNumberOfBandCells: " << this->MaximumNumberOfBandCells << "\n";
+  os << indent << "GhostMargin: " << this->GhostMargin << "\n";
 }

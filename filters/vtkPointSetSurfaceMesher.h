@@ -45,6 +45,11 @@
  * share of the cells, rank r the cells [r T / N, (r + 1) T / N) of T, with the points they use
  * and `GlobalPointIds`, their ids in the whole mesh. Merged by global id, the ranks' outputs are
  * the one-process mesh, so that a distributed pipeline can render or write it in parallel.
+ * With GhostMargin > 0 no rank gathers the cloud: the band comes from every rank's occupied cells
+ * (one AllGatherV of cell keys), and each of the three split stages (corners, crossings, the
+ * small holes' centres) runs in ghost rounds (pss_vtk::RunGhostRounds) over the rank's block;
+ * neighbourhoods are summed in coordinate order, so the mesh is bitwise the one-process mesh of
+ * the same GhostMargin. The band itself is still held whole on every rank (about 60 B a cell).
  *
  * @sa vtkPointSetSurfaceDomainClassifier vtkPointSetSurfaceFieldSampler vtkPointSetSurface
  */
@@ -55,7 +60,20 @@
 #include "PointSetSurfacesFiltersModule.h" // for export macro
 #include "vtkPointSetSurfaceAlgorithm.h"
 
-#include <string> // for std::string
+#include <optional> // for std::optional
+#include <string>   // for std::string
+
+namespace pss
+{
+struct MeshOptions;
+struct MeshTimings;
+struct StageSplit;
+struct SurfaceMesh;
+}
+namespace pss_vtk
+{
+struct GhostRun;
+}
 
 class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceMesher : public vtkPointSetSurfaceAlgorithm
 {
@@ -187,6 +205,21 @@ public:
   vtkGetMacro(MaximumNumberOfBandCells, vtkIdType);
   ///@}
 
+  ///@{
+  /**
+   * Distributed runs: 0 (default) gathers the whole cloud on every rank; > 0 exchanges only the
+   * ghost points within this many h of the box of each block of grid corners, crossings or hole
+   * centres a rank evaluates (vtkPointSetSurfaceProjection::SetGhostMargin says more). In one
+   * process, > 0 only sums neighbourhoods in coordinate order, as the ranks then do.
+   */
+  vtkSetClampMacro(GhostMargin, double, 0.0, 1e6);
+  vtkGetMacro(GhostMargin, double);
+  ///@}
+
+  /// The most rounds of ghost exchange a stage of the last distributed update with GhostMargin > 0
+  /// took (0 otherwise); also the output's field data `GhostRounds`, beside `GhostPoints`.
+  vtkGetMacro(GhostRounds, int);
+
   /**
    * Wall time of the last update's stages, e.g. "band 0.05 s, corners 2.1 s, ...": what `pss mesh
    * --verbose` prints (kept out of the output so that the output stays bitwise reproducible).
@@ -202,6 +235,15 @@ protected:
   /// The mesh gives the one-process result in a distributed run (see the class description).
   bool SupportsDistributedRun() const override { return true; }
 
+#ifndef __VTK_WRAP__
+  /// The distributed run with GhostMargin > 0: the mesh (every rank the same), or none after an
+  /// error (@p failed; @p tooLarge: an exchange beyond one MPI message). Throws
+  /// std::invalid_argument on every rank alike for an absurd band.
+  std::optional<pss::SurfaceMesh> MeshWithGhostPoints(vtkMultiProcessController* controller,
+    pss_vtk::GhostRun& run, const pss::MeshOptions& options, const pss::StageSplit& split, pss::MeshTimings& t,
+    bool& tooLarge, bool& failed);
+#endif
+
   double CellSize = 1.0;
   double Band = 1.0;
   bool ProjectVertices = true;
@@ -215,6 +257,8 @@ protected:
   double MinPieceArea = 0.0;
   double CoveredPieceArea = 10.0;
   vtkIdType MaximumNumberOfBandCells = vtkIdType(1) << 24;
+  double GhostMargin = 0.0;
+  int GhostRounds = 0;
   std::string TimingReport;
 
 private:

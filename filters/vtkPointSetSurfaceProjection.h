@@ -38,9 +38,10 @@
  * is flagged by the core and projected again in a next round with a box grown by twice the
  * margin, until none is (at worst the box holds the whole cloud). h, the centroid that orients
  * n and the dimension are the one-process values (the automatic h is estimated on rank 0, which
- * holds the whole cloud for that moment: set ScaleFactor to avoid it); results then equal the
- * one-process run's to rounding, not bitwise (neighbours are summed in another order; see the
- * README).
+ * holds the whole cloud for that moment: set ScaleFactor to avoid it). With GhostMargin > 0 every
+ * neighbourhood is summed in the order of its points' coordinates, on the ranks and in one
+ * process alike (pss::PointIndex::setCoordinateOrder, 10-20% slower on the cheapest definition),
+ * so results are bitwise the one-process run's with the same GhostMargin; see the README.
  *
  * @sa vtkPointSetSurface vtkPointSetSurfaceDomainClassifier
  */

@@ -156,10 +156,11 @@ namespace
 // The mesh of a run split over @p parts processes (pss::StageSplit), simulated in one process:
 // each part's block of a stage is computed by a run of that part which stops at the stage's
 // exchange, the blocks meet in a store, and a last run takes both stages from the store.
-pss::SurfaceMesh splitMesh(const pss::SurfaceDefinition& surface, int parts)
+pss::SurfaceMesh splitMesh(const pss::SurfaceDefinition& surface, const pss::MeshOptions& options, int parts)
 {
-  std::vector<double> store[2];           // corners, crossings: every part's block
-  std::size_t filled[2] = { 0, 0 };       // values recorded so far
+  constexpr std::size_t Stages = 3;     // corners, crossings, holes' centres: every part's block
+  std::vector<double> store[Stages];
+  std::size_t filled[Stages] = { 0, 0, 0 }; // values recorded so far
   auto runPart = [&](int part, std::size_t stopAt) {
     std::size_t stage = 0;
     pss::StageSplit split;
@@ -181,9 +182,9 @@ pss::SurfaceMesh splitMesh(const pss::SurfaceDefinition& surface, int parts)
       filled[k] += end - begin;
       return false; // stop here: the other parts' blocks are not known yet
     };
-    return pss::extractSurfaceMesh(surface, {}, pss::threadLoop(1), nullptr, &split);
+    return pss::extractSurfaceMesh(surface, options, pss::threadLoop(1), nullptr, &split);
   };
-  for (std::size_t stage = 0; stage < 2; ++stage)
+  for (std::size_t stage = 0; stage < Stages; ++stage)
   {
     for (int part = 0; part < parts; ++part)
     {
@@ -191,23 +192,29 @@ pss::SurfaceMesh splitMesh(const pss::SurfaceDefinition& surface, int parts)
     }
     EXPECT_EQ(filled[stage], store[stage].size()) << "the parts' blocks cover stage " << stage;
   }
-  const std::optional<pss::SurfaceMesh> mesh = runPart(parts - 1, 2);
+  const std::optional<pss::SurfaceMesh> mesh = runPart(parts - 1, Stages);
   EXPECT_TRUE(mesh.has_value());
   return mesh.value_or(pss::SurfaceMesh{});
 }
 } // namespace
 
-// What a distributed mesher does (vtkPointSetSurfaceMesher under MPI): the blocks of the corners
-// and crossings computed apart and exchanged give the one-process mesh, bitwise.
+// What a distributed mesher does (vtkPointSetSurfaceMesher under MPI): the blocks of the corners,
+// the crossings and the holes' centres computed apart and exchanged give the one-process mesh,
+// bitwise.
 TEST(Mesh, SplitOverPartsIsTheWholeMesh)
 {
   const pss::PointIndex index = indexOf(sphereSpec());
   auto surface = pss::makeSurface(pss::Variant::CenterOfMass, index, pss_test::params(1.0));
-  const pss::SurfaceMesh whole = pss::extractSurfaceMesh(*surface, {}, 1);
+  // Holes to close, so that the third stage has work (SmallHolesAreClosedOnTheSurface's setting).
+  pss::MeshOptions options;
+  options.maxSeamAngle = 5.5;
+  options.maxHoleEdges = 20;
+  const pss::SurfaceMesh whole = pss::extractSurfaceMesh(*surface, options, 1);
   ASSERT_GT(whole.triangles.size(), 1000u);
+  ASSERT_GT(whole.statistics.closedHoles, 0u);
   for (int parts : { 2, 3 })
   {
-    const pss::SurfaceMesh split = splitMesh(*surface, parts);
+    const pss::SurfaceMesh split = splitMesh(*surface, options, parts);
     ASSERT_EQ(split.points.size(), whole.points.size()) << parts;
     ASSERT_EQ(split.triangles, whole.triangles) << parts;
     for (std::size_t i = 0; i < whole.points.size(); ++i)
@@ -220,6 +227,42 @@ TEST(Mesh, SplitOverPartsIsTheWholeMesh)
       ASSERT_EQ(split.evidence[i].normalAngle, whole.evidence[i].normalAngle) << i;
     }
   }
+}
+
+// What a rank with ghost points does: the grid from the frame alone, the band from every piece's
+// occupied cells merged, the stages driven one by one. The mesh is the one-process mesh.
+TEST(Mesh, BandFromThePiecesCellsGivesTheWholeMesh)
+{
+  const pss::PointIndex index = indexOf(sphereSpec());
+  auto surface = pss::makeSurface(pss::Variant::CenterOfMass, index, pss_test::params(1.0));
+  const pss::SurfaceMesh whole = pss::extractSurfaceMesh(*surface, {}, 1);
+  pss::SurfaceMesher mesher(pss::MeshFrame::of(*surface), {});
+  std::vector<Vec3> west, east;
+  for (const Vec3& p : index.points())
+  {
+    (p.x() < 0.0 ? west : east).push_back(p);
+  }
+  std::vector<std::uint64_t> keys = mesher.cellKeysOf(east);
+  const std::vector<std::uint64_t> more = mesher.cellKeysOf(west);
+  keys.insert(keys.end(), more.begin(), more.end()); // unsorted, with repeats along x = 0
+  mesher.buildBand(std::move(keys));
+  mesher.useSurface(*surface, false);
+  pss::Workspace ws;
+  for (std::size_t i = 0; i < mesher.gridVertexCount(); ++i)
+  {
+    mesher.evaluateVertex(i, ws);
+  }
+  mesher.orient();
+  mesher.contour();
+  for (std::size_t i = 0; i < mesher.crossingCount(); ++i)
+  {
+    mesher.classifyCrossing(i, ws);
+  }
+  const pss::SurfaceMesh mesh = mesher.finish(ws);
+  EXPECT_EQ(mesh.statistics.bandCells, whole.statistics.bandCells);
+  ASSERT_EQ(mesh.triangles, whole.triangles);
+  ASSERT_EQ(mesh.points, whole.points);
+  ASSERT_EQ(mesh.normals, whole.normals);
 }
 
 TEST(Mesh, NormalsPointOutwardAndTrianglesTurnAboutThem)

@@ -6,8 +6,7 @@
 Reads DIR/case.json (the cloud .pvtp, optional start points .pvtp, surface settings), applies the
 projection, the domain classifier, the field sampler (probing the start points, or the cloud) and
 the energy glyphs (at the start points, or the cloud) and the mesher (when the case has a
-"ghost_margin": every filter but the mesher, with GhostMargin set; each rank then prints its ghost
-rounds), and writes each rank's own output of each
+"ghost_margin": with GhostMargin set; each rank then prints its ghost rounds), and writes each rank's own output of each
 filter to DIR/NAME_<filter>_<rank>.vtp (double coordinates, binary: bit-exact; no file for an
 empty output; the glyphs' two outputs as `glyphs` and `fits`); and the sampler's own grid, each
 rank's part of it, to DIR/NAME_grid_<rank>.vti. Ends normally (pvbatch then finalizes MPI on every rank); the driver judges the files
@@ -53,10 +52,8 @@ filters = (
                                                    Resolution=8)),
     ("mesh", lambda: PointSetSurfaceMesh(Input=cloud)),
 )
-ghost_margin = case.get("ghost_margin")  # ghost-point runs: every filter but the mesher
+ghost_margin = case.get("ghost_margin")  # ghost-point runs
 for name, make in filters:
-    if ghost_margin is not None and name == "mesh":
-        continue
     proxy = make()
     for key, value in surface.items():
         setattr(proxy, key, value)

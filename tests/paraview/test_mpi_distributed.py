@@ -72,7 +72,7 @@ problems = []
 POINT_FILTERS = ("projection", "classifier", "sampler")  # outputs: points with GlobalPointIds
 CONCATENATED = ("glyphs", "fits")  # the energy glyphs' two outputs: rank by rank, in sample order
 FILTERS = POINT_FILTERS + ("grid", "glyphs", "mesh")  # grid: the sampler's own image, split by extent
-GHOST_FILTERS = POINT_FILTERS + ("grid", "glyphs")  # what runs with GhostMargin > 0: all but the mesh
+GHOST_FILTERS = FILTERS  # what runs with GhostMargin > 0: every filter
 GHOST_H = 0.13  # about the automatic h of the case's sphere, given: no gather on rank 0 (ghost-autoh tests that)
 ERRORS = {"empty": "the point cloud is empty", "zeroh": "invalid surface parameters",
           "ghost-empty": "the point cloud is empty", "ghost-zeroh": "invalid surface parameters"}
@@ -444,9 +444,10 @@ def check_unreadable(directory, serial_log, parallel_log, case):
     """An unreadable piece: VTK's XML reader prints "File for piece k cannot be read" and still
     reports success (with no point in one process, with the other pieces under MPI). One process:
     every filter refuses the empty cloud. Under MPI the filters notice the reader's error on rank k
-    (pss_vtk::UpstreamErrorWatch) and every rank stops in every filter, rank k naming the reader's
-    error, the others the count of ranks that had one. Asserted: those errors, no output on any
-    rank, and no hang (run()'s time limit)."""
+    (pss_vtk::UpstreamErrorWatch) and every rank stops in every filter with the same error, which
+    names the ranks whose upstream failed (the reader's own error is in their log). Asserted: the
+    reader's error on the right ranks, that same error from every filter on every rank, no output
+    on any rank, and no hang (run()'s time limit)."""
     before = len(problems)
     first = "File for piece %d cannot be read" % case["unreadable"][0]  # one process stops there
     if not any(first in m for _, _, m in log_messages(serial_log)):
@@ -459,16 +460,11 @@ def check_unreadable(directory, serial_log, parallel_log, case):
     refused = [cls for _, cls, m in log_messages(serial_log) if "the point cloud is empty" in m]
     if len(refused) != len(FILTERS):
         problems.append("one process: %d filters refused the empty cloud, expected %d" % (len(refused), len(FILTERS)))
+    want = "the pipeline upstream reported an error on rank(s) %s during this update" % (
+        ", ".join(str(k) for k in case["unreadable"]))
     for r in range(args.np):
-        stops = [m for rank, _, m in log_messages(parallel_log)
-                 if rank == r and "the pipeline upstream reported an error" in m]
-        if r in case["unreadable"]:
-            want = "on this rank (... File for piece %d cannot be read" % r
-            ok = all("on this rank (" in m and "File for piece %d cannot be read" % r in m for m in stops)
-        else:
-            want = "on %d other rank(s)" % len(case["unreadable"])
-            ok = all(want in m for m in stops)
-        if len(stops) != len(FILTERS) or not ok:
+        stops = [m for rank, _, m in log_messages(parallel_log) if rank == r and "pipeline upstream" in m]
+        if len(stops) != len(FILTERS) or not all(want in m for m in stops):
             problems.append("np %d: rank %d stopped %d filters of %d (%r), each expected to say %r"
                             % (args.np, r, len(stops), len(FILTERS), stops, want))
         for name in FILTERS:
@@ -476,20 +472,20 @@ def check_unreadable(directory, serial_log, parallel_log, case):
                 problems.append("np %d: rank %d has output of the %s" % (args.np, r, name))
     if len(problems) == before:
         print("ok   pieces %r unreadable: the reader's error on their ranks; one process refuses the empty "
-              "cloud in all %d filters; under MPI every rank stops in each of them, naming the reader's error "
-              "or the ranks that had one" % (case["unreadable"], len(FILTERS)), flush=True)
+              "cloud in all %d filters; under MPI every rank stops in each of them with the same error naming "
+              "those ranks" % (case["unreadable"], len(FILTERS)), flush=True)
 
 
 def check_ghost_rounds(parallel_log):
     """The rounds each rank's filters took (printed by the worker): every filter with output must
-    report at least one; in ghost-narrow the projection and the grid must need more than one."""
+    report at least one; in ghost-narrow the projection, the grid and the mesh must need more than one."""
     found = re.findall(r"rank (\d+): (\w+) ghost rounds (\d+)", parallel_log)
     for name in GHOST_FILTERS:
         rounds = {int(r): int(k) for r, f, k in found if f == name}
         print("ok   ghost rounds of the %s by rank: %r" % (name, sorted(rounds.items())), flush=True)
         if not rounds or min(rounds.values()) < 1:  # ranks without points have no output to say it
             problems.append("%s: ghost rounds reported by ranks %r" % (name, rounds))
-        elif args.case == "ghost-narrow" and name in ("projection", "grid") and max(rounds.values()) < 2:
+        elif args.case == "ghost-narrow" and name in ("projection", "grid", "mesh") and max(rounds.values()) < 2:
             problems.append("ghost-narrow: no %s point needed a second round (%r): the case tests nothing"
                             % (name, rounds))
 
@@ -506,7 +502,7 @@ def check_same_error(parallel_log, message, filters, serial_log=None):
     if serial_log is None:
         want = ["vtkPointSetSurface" + {"projection": "Projection", "classifier": "DomainClassifier",
                                         "sampler": "FieldSampler", "grid": "FieldSampler",
-                                        "glyphs": "EnergyGlyphs"}[f] for f in filters]
+                                        "glyphs": "EnergyGlyphs", "mesh": "Mesher"}[f] for f in filters]
     else:
         want = failing(serial_log).get(0, [])
     if len(want) != len(filters):
@@ -551,6 +547,7 @@ def main():
         compare_grid(directory)
         for name in CONCATENATED:
             compare_concatenated(directory, name)
+        compare_mesh(directory)
         check_ghost_rounds(parallel_log)
     else:
         if "unreadable" in case:

@@ -153,15 +153,33 @@ std::vector<Key> widen(std::vector<Key> keys, const Coords& size, int dimension,
 
 } // namespace
 
+MeshFrame MeshFrame::of(const SurfaceDefinition& surface)
+{
+  const PointIndex& index = surface.index();
+  return MeshFrame{ surface.dimension(), surface.h(), index.boundsMin(), index.boundsMax(), index.centroid() };
+}
+
 SurfaceMesher::SurfaceMesher(const SurfaceDefinition& surface, const MeshOptions& options)
-  : Surface(surface)
-  , Options(options)
-  , Normals(surface)
+  : SurfaceMesher(MeshFrame::of(surface), options)
+{
+  buildBand(cellKeysOf(surface.index().points()));
+  useSurface(surface);
+}
+
+SurfaceMesher::SurfaceMesher(const MeshFrame& frame, const MeshOptions& options)
+  : Options(options)
+  , Frame(frame)
 {
   Options.validate();
-  Dimension = surface.dimension();
-  Cell = Options.cellSize * surface.h();
-  buildBand();
+  Dimension = frame.dimension;
+  Cell = Options.cellSize * frame.h;
+  sizeGrid();
+}
+
+void SurfaceMesher::useSurface(const SurfaceDefinition& surface, bool cacheCloudNormals)
+{
+  Surface = &surface;
+  Normals = cacheCloudNormals ? std::make_unique<CloudNormals>(surface) : nullptr;
 }
 
 SurfaceMesher::Key SurfaceMesher::keyOf(const std::array<long long, 3>& c) const
@@ -224,15 +242,14 @@ void SurfaceMesher::linkNeighbours()
   }
 }
 
-void SurfaceMesher::buildBand()
+void SurfaceMesher::sizeGrid()
 {
-  const PointIndex& index = Surface.index();
   const double ratio = Options.band / Options.cellSize;
   if (ratio > 1e5)
   {
     throw std::invalid_argument("the mesh band is more than 1e5 cells wide: use a larger cell size");
   }
-  const long long reach = static_cast<long long>(std::ceil(ratio));
+  Reach = static_cast<long long>(std::ceil(ratio));
   // Axis lengths leave room for the band and the cells' far corners on either side.
   std::ostringstream dims;
   for (int a = 0; a < 3; ++a)
@@ -242,7 +259,7 @@ void SurfaceMesher::buildBand()
       Size[a] = 1;
       continue;
     }
-    const double cells = std::floor((index.boundsMax()[a] - index.boundsMin()[a]) / Cell) + 2.0 * reach + 3.0;
+    const double cells = std::floor((Frame.boundsMax[a] - Frame.boundsMin[a]) / Cell) + 2.0 * Reach + 3.0;
     dims << (a > 0 ? " x " : "") << cells;
     if (!(cells <= static_cast<double>(1LL << 20)))
     {
@@ -250,25 +267,38 @@ void SurfaceMesher::buildBand()
         " cells, more than 2^20 along an axis: use a larger cell size");
     }
     Size[a] = static_cast<long long>(cells);
-    Origin[a] = index.boundsMin()[a] - static_cast<double>(reach + 1) * Cell;
+    Origin[a] = Frame.boundsMin[a] - static_cast<double>(Reach + 1) * Cell;
   }
+}
 
-  std::vector<Key> occupied(index.size());
-  for (std::size_t i = 0; i < index.size(); ++i)
+std::vector<std::uint64_t> SurfaceMesher::cellKeysOf(const std::vector<Vec3>& points) const
+{
+  std::vector<Key> occupied;
+  occupied.reserve(points.size());
+  for (const Vec3& p : points)
   {
+    if (!isFinite(p))
+    {
+      continue;
+    }
     Coords c{ { 0, 0, 0 } };
     for (int a = 0; a < Dimension; ++a)
     {
       // Clamped to the cells the axis lengths were sized for: rounding in p - Origin may add one.
-      c[a] = std::clamp(static_cast<long long>(std::floor((index.point(i)[a] - Origin[a]) / Cell)), reach + 1,
-        Size[a] - reach - 2);
+      c[a] = std::clamp(static_cast<long long>(std::floor((p[a] - Origin[a]) / Cell)), Reach + 1, Size[a] - Reach - 2);
     }
-    occupied[i] = keyOf(c);
+    occupied.push_back(keyOf(c));
   }
   std::sort(occupied.begin(), occupied.end());
   occupied.erase(std::unique(occupied.begin(), occupied.end()), occupied.end());
+  return occupied;
+}
 
-  Cells = widen(std::move(occupied), Size, Dimension, reach, reach, Options.maxBandCells, "band");
+void SurfaceMesher::buildBand(std::vector<std::uint64_t> occupied)
+{
+  std::sort(occupied.begin(), occupied.end());
+  occupied.erase(std::unique(occupied.begin(), occupied.end()), occupied.end());
+  Cells = widen(std::move(occupied), Size, Dimension, Reach, Reach, Options.maxBandCells, "band");
   Keys = widen(Cells, Size, Dimension, 0, 1, 2 * Options.maxBandCells, "band's corners");
   Values.assign(Keys.size(), CornerValue{});
   linkNeighbours();
@@ -279,13 +309,13 @@ void SurfaceMesher::buildBand()
 void SurfaceMesher::evaluateVertex(std::size_t i, Workspace& ws)
 {
   const Vec3 x = positionOf(Keys[i]);
-  const Direction d = Surface.direction(x, ws);
+  const Direction d = Surface->direction(x, ws);
   CornerValue& v = Values[i];
   v.defined = d.defined;
   if (d.defined)
   {
     v.n = d.n;
-    v.g = Surface.lineSample(x, d.n, ws).trueSlope();
+    v.g = Surface->lineSample(x, d.n, ws).trueSlope();
     v.defined = std::isfinite(v.g);
   }
 }
@@ -294,7 +324,7 @@ void SurfaceMesher::orient()
 {
   const std::size_t n = Keys.size();
   Sign.assign(n, 0);
-  const Orientation away = Orientation::awayFromCentroid(Surface.index());
+  const Orientation away = Orientation::awayFrom(Frame.centroid);
   // Max-heap of (|n_a . n_b|, b, a): the most parallel edge out of the oriented set goes first.
   using Edge = std::tuple<double, std::uint32_t, std::uint32_t>;
   std::priority_queue<Edge> heap;
@@ -527,7 +557,7 @@ void SurfaceMesher::contour()
 
 void SurfaceMesher::classifyCrossing(std::size_t i, Workspace& ws)
 {
-  Evidence[i] = classifyStart(Surface, Crossings[i].point, Options.projection, Options.domain, ws, &Normals);
+  Evidence[i] = classifyStart(*Surface, Crossings[i].point, Options.projection, Options.domain, ws, Normals.get());
 }
 
 namespace
@@ -579,29 +609,60 @@ void SurfaceMesher::setCornerValues(const std::vector<double>& values)
   }
 }
 
+namespace
+{
+
+// A DomainEvidence as EvidenceWidth doubles, and back.
+void putEvidence(double*& o, const DomainEvidence& e)
+{
+  const ProjectionResult& p = e.projection;
+  *o++ = static_cast<double>(e.label);
+  *o++ = p.point.x();
+  *o++ = p.point.y();
+  *o++ = p.point.z();
+  putDirection(o, p.direction);
+  putDirection(o, p.startDirection);
+  *o++ = p.energy;
+  *o++ = p.iterations;
+  *o++ = p.converged ? 1.0 : 0.0;
+  *o++ = p.lastStep;
+  *o++ = static_cast<double>(p.reason);
+  *o++ = static_cast<double>(p.type);
+  *o++ = e.distanceToCloud;
+  *o++ = e.normalAngle;
+  *o++ = e.startAngle;
+  *o++ = e.startStability;
+}
+
+void takeEvidence(const double*& in, DomainEvidence& e)
+{
+  ProjectionResult& p = e.projection;
+  e.label = static_cast<DomainLabel>(static_cast<int>(*in++));
+  p.point = Vec3(in[0], in[1], in[2]);
+  in += 3;
+  p.direction = takeDirection(in);
+  p.startDirection = takeDirection(in);
+  p.energy = *in++;
+  p.iterations = static_cast<int>(*in++);
+  p.converged = *in++ != 0.0;
+  p.lastStep = *in++;
+  p.reason = static_cast<StopReason>(static_cast<int>(*in++));
+  p.type = static_cast<ExtremumType>(static_cast<int>(*in++));
+  e.distanceToCloud = *in++;
+  e.normalAngle = *in++;
+  e.startAngle = *in++;
+  e.startStability = *in++;
+}
+
+} // namespace
+
 std::vector<double> SurfaceMesher::crossingEvidence() const
 {
   std::vector<double> out(Evidence.size() * EvidenceWidth);
   double* o = out.data();
   for (const DomainEvidence& e : Evidence)
   {
-    const ProjectionResult& p = e.projection;
-    *o++ = static_cast<double>(e.label);
-    *o++ = p.point.x();
-    *o++ = p.point.y();
-    *o++ = p.point.z();
-    putDirection(o, p.direction);
-    putDirection(o, p.startDirection);
-    *o++ = p.energy;
-    *o++ = p.iterations;
-    *o++ = p.converged ? 1.0 : 0.0;
-    *o++ = p.lastStep;
-    *o++ = static_cast<double>(p.reason);
-    *o++ = static_cast<double>(p.type);
-    *o++ = e.distanceToCloud;
-    *o++ = e.normalAngle;
-    *o++ = e.startAngle;
-    *o++ = e.startStability;
+    putEvidence(o, e);
   }
   return out;
 }
@@ -611,23 +672,85 @@ void SurfaceMesher::setCrossingEvidence(const std::vector<double>& values)
   const double* in = values.data();
   for (DomainEvidence& e : Evidence)
   {
-    ProjectionResult& p = e.projection;
-    e.label = static_cast<DomainLabel>(static_cast<int>(*in++));
-    p.point = Vec3(in[0], in[1], in[2]);
-    in += 3;
-    p.direction = takeDirection(in);
-    p.startDirection = takeDirection(in);
-    p.energy = *in++;
-    p.iterations = static_cast<int>(*in++);
-    p.converged = *in++ != 0.0;
-    p.lastStep = *in++;
-    p.reason = static_cast<StopReason>(static_cast<int>(*in++));
-    p.type = static_cast<ExtremumType>(static_cast<int>(*in++));
-    e.distanceToCloud = *in++;
-    e.normalAngle = *in++;
-    e.startAngle = *in++;
-    e.startStability = *in++;
+    takeEvidence(in, e);
   }
+}
+
+std::vector<double> SurfaceMesher::holeValues() const
+{
+  std::vector<double> out(HoleEvidence.size() * HoleWidth);
+  double* o = out.data();
+  for (std::size_t j = 0; j < HoleEvidence.size(); ++j)
+  {
+    putEvidence(o, HoleEvidence[j]);
+    *o++ = HoleCloudSqDist[j];
+  }
+  return out;
+}
+
+void SurfaceMesher::setHoleValues(const std::vector<double>& values)
+{
+  const double* in = values.data();
+  for (std::size_t j = 0; j < HoleEvidence.size(); ++j)
+  {
+    takeEvidence(in, HoleEvidence[j]);
+    HoleCloudSqDist[j] = *in++;
+  }
+}
+
+namespace
+{
+
+// Measures the time since the last lap into @p seconds.
+class Laps
+{
+public:
+  void lap(double& seconds)
+  {
+    const auto now = std::chrono::steady_clock::now();
+    seconds = std::chrono::duration<double>(now - Last).count();
+    Last = now;
+  }
+
+private:
+  std::chrono::steady_clock::time_point Last = std::chrono::steady_clock::now();
+};
+
+} // namespace
+
+std::optional<SurfaceMesh> runMeshStages(
+  SurfaceMesher& mesher, const std::function<bool(const MeshStage&)>& run, MeshTimings& t)
+{
+  Laps laps;
+  if (!run(MeshStage{ mesher.gridVertexCount(), [&](std::size_t i) { return mesher.gridVertex(i); },
+        &SurfaceMesher::evaluateVertex, &SurfaceMesher::cornerValues, &SurfaceMesher::setCornerValues,
+        SurfaceMesher::CornerWidth, LoopShare(0.0, 0.45) }))
+  {
+    return std::nullopt;
+  }
+  laps.lap(t.corners);
+  mesher.orient();
+  laps.lap(t.orient);
+  mesher.contour();
+  laps.lap(t.contour);
+  if (!run(MeshStage{ mesher.crossingCount(), [&](std::size_t i) { return mesher.crossing(i); },
+        &SurfaceMesher::classifyCrossing, &SurfaceMesher::crossingEvidence, &SurfaceMesher::setCrossingEvidence,
+        SurfaceMesher::EvidenceWidth, LoopShare(0.5, 0.98) }))
+  {
+    return std::nullopt;
+  }
+  laps.lap(t.projection);
+  SurfaceMesh mesh = mesher.assemble();
+  mesher.findHoles(mesh);
+  if (!run(MeshStage{ mesher.holeCount(), [&](std::size_t j) { return mesher.holeCentre(j); },
+        &SurfaceMesher::evaluateHole, &SurfaceMesher::holeValues, &SurfaceMesher::setHoleValues,
+        SurfaceMesher::HoleWidth, LoopShare(0.98, 1.0) }))
+  {
+    return std::nullopt;
+  }
+  mesher.closeHoles(mesh);
+  laps.lap(t.finish);
+  return mesh;
 }
 
 std::optional<SurfaceMesh> extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options,
@@ -635,63 +758,36 @@ std::optional<SurfaceMesh> extractSurfaceMesh(const SurfaceDefinition& surface, 
 {
   MeshTimings local;
   MeshTimings& t = timings ? *timings : local;
-  auto clock = std::chrono::steady_clock::now();
-  auto lap = [&clock](double& seconds) {
-    const auto now = std::chrono::steady_clock::now();
-    seconds = std::chrono::duration<double>(now - clock).count();
-    clock = now;
-  };
+  Laps laps;
   SurfaceMesher mesher(surface, options);
-  lap(t.band);
-  // The two parallel stages: one call of a mesher method per index (of this part's block, with a
-  // split), through the caller's loop.
-  auto each = [&](std::size_t n, LoopShare share, void (SurfaceMesher::*stage)(std::size_t, Workspace&)) {
-    const std::size_t first = split ? split->begin(n) : 0;
-    const std::size_t last = split ? split->end(n) : n;
-    return loop(last - first, share, [&](std::size_t begin, std::size_t end, Workspace& ws) {
-      for (std::size_t i = first + begin; i < first + end; ++i)
+  laps.lap(t.band);
+  // Each parallel stage: one call of a mesher method per index (of this part's block, with a
+  // split) through the caller's loop; with a split every part then takes part in the exchange,
+  // aborted or not, so none waits in vain.
+  return runMeshStages(
+    mesher,
+    [&](const MeshStage& stage) {
+      const std::size_t first = split ? split->begin(stage.count) : 0;
+      const std::size_t last = split ? split->end(stage.count) : stage.count;
+      const bool completed = loop(last - first, stage.share, [&](std::size_t begin, std::size_t end, Workspace& ws) {
+        for (std::size_t i = first + begin; i < first + end; ++i)
+        {
+          (mesher.*stage.evaluate)(i, ws);
+        }
+      });
+      if (!split)
       {
-        (mesher.*stage)(i, ws);
+        return completed;
       }
-    });
-  };
-  // With a split every part takes part in each exchange, aborted or not, so none waits in vain.
-  auto shared = [&](bool completed, std::vector<double> (SurfaceMesher::*get)() const,
-                  void (SurfaceMesher::*set)(const std::vector<double>&), std::size_t width, std::size_t count) {
-    if (!split)
-    {
-      return completed;
-    }
-    std::vector<double> items = (mesher.*get)();
-    if (!split->share(items, width, count, completed))
-    {
-      return false;
-    }
-    (mesher.*set)(items);
-    return true;
-  };
-  if (!shared(each(mesher.gridVertexCount(), LoopShare(0.0, 0.45), &SurfaceMesher::evaluateVertex),
-        &SurfaceMesher::cornerValues, &SurfaceMesher::setCornerValues, SurfaceMesher::CornerWidth,
-        mesher.gridVertexCount()))
-  {
-    return std::nullopt;
-  }
-  lap(t.corners);
-  mesher.orient();
-  lap(t.orient);
-  mesher.contour();
-  lap(t.contour);
-  if (!shared(each(mesher.crossingCount(), LoopShare(0.5, 0.98), &SurfaceMesher::classifyCrossing),
-        &SurfaceMesher::crossingEvidence, &SurfaceMesher::setCrossingEvidence, SurfaceMesher::EvidenceWidth,
-        mesher.crossingCount()))
-  {
-    return std::nullopt;
-  }
-  lap(t.projection);
-  Workspace ws;
-  SurfaceMesh mesh = mesher.finish(ws);
-  lap(t.finish);
-  return mesh;
+      std::vector<double> items = (mesher.*stage.get)();
+      if (!split->share(items, stage.width, stage.count, completed))
+      {
+        return false;
+      }
+      (mesher.*stage.set)(items);
+      return true;
+    },
+    t);
 }
 
 SurfaceMesh extractSurfaceMesh(const SurfaceDefinition& surface, const MeshOptions& options, int threads, MeshTimings* timings)

@@ -48,11 +48,13 @@
 
 #include "pss/Domain.h"
 #include "pss/ExtremalSurface.h"
+#include "pss/Parallel.h"
 #include "pss/SurfaceDefinition.h"
 
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -130,7 +132,21 @@ struct SurfaceMesh
 };
 
 /**
- * A split of the mesher's two parallel stages over cooperating processes (an MPI run where every
+ * What the mesher needs of the whole cloud besides its points' cells. One process takes it from
+ * the surface (of()); a distributed run whose ranks hold only pieces reduces it over them.
+ */
+struct MeshFrame
+{
+  int dimension = 3;
+  double h = 0.0;
+  Vec3 boundsMin = Vec3::Zero(); ///< of the finite cloud points
+  Vec3 boundsMax = Vec3::Zero();
+  Vec3 centroid = Vec3::Zero();  ///< n is oriented away from it
+  static MeshFrame of(const SurfaceDefinition& surface);
+};
+
+/**
+ * A split of the mesher's three parallel stages over cooperating processes (an MPI run where every
  * process holds the whole cloud): each process computes its part of a stage's items, a
  * contiguous block, then share() hands every process every part. An item is computed alike
  * wherever it is (it depends on the cloud and its position only), so the mesh is bitwise the one
@@ -154,29 +170,68 @@ struct StageSplit
  * std::invalid_argument with the cell count when it is absurd), then call evaluateVertex() for
  * every index below gridVertexCount(), orient(), contour(), classifyCrossing() for every index
  * below crossingCount(), and finish(). The two loops may run on any number of threads (distinct
- * indices, a Workspace per thread); the other stages are sequential and cheap.
+ * indices, a Workspace per thread); the other stages are sequential and cheap. finish() is
+ * assemble(), findHoles(), evaluateHole() for every index below holeCount() (a third loop) and
+ * closeHoles().
+ *
+ * A process that holds only part of the cloud (a distributed run with ghost points) constructs
+ * from a MeshFrame, gives buildBand() the cells of every rank's points (cellKeysOf() of each
+ * rank's own, merged), and before each loop calls useSurface() with a surface complete around
+ * the indices it evaluates; an evaluation that read beyond that surface's complete region sets
+ * Workspace::leftCompleteRegion, and the caller evaluates that index again on a wider one.
+ * Everything else depends on the frame, the band and the evaluations only, so with the same
+ * evaluations every process builds the same mesh.
  */
 class SurfaceMesher
 {
 public:
   SurfaceMesher(const SurfaceDefinition& surface, const MeshOptions& options);
+  /// Sizes the grid for @p frame; buildBand() and useSurface() must follow.
+  SurfaceMesher(const MeshFrame& frame, const MeshOptions& options);
+
+  /// The keys of the grid cells that hold @p points (the finite ones), sorted, without repeats.
+  std::vector<std::uint64_t> cellKeysOf(const std::vector<Vec3>& points) const;
+  /// Builds the band around the cells @p occupied (cellKeysOf() of the whole cloud, or of its
+  /// pieces merged: sorted and made unique here). Throws std::invalid_argument when too large.
+  void buildBand(std::vector<std::uint64_t> occupied);
+  /// The surface the loops evaluate from now on; @p cacheCloudNormals keeps the cloud normals
+  /// that the domain tests compute (off when the surface holds part of the cloud: a normal read
+  /// beyond its complete region must be flagged for every evaluation that uses it).
+  void useSurface(const SurfaceDefinition& surface, bool cacheCloudNormals = true);
 
   std::size_t gridVertexCount() const { return Keys.size(); }
+  Vec3 gridVertex(std::size_t i) const { return positionOf(Keys[i]); }
   void evaluateVertex(std::size_t i, Workspace& ws);
   void orient();
   void contour();
   std::size_t crossingCount() const { return Crossings.size(); }
+  const Vec3& crossing(std::size_t i) const { return Crossings[i].point; }
   void classifyCrossing(std::size_t i, Workspace& ws);
   SurfaceMesh finish(Workspace& ws);
 
-  /// The results of evaluateVertex() (CornerWidth doubles per corner) and of classifyCrossing()
-  /// (EvidenceWidth per crossing) as flat arrays, and back: what a StageSplit exchanges.
+  /// The mesh of the kept cells (stage 6), before any hole is closed.
+  SurfaceMesh assemble();
+  /// Finds @p mesh's small holes (stage 7) and their centres, which evaluateHole() projects.
+  void findHoles(const SurfaceMesh& mesh);
+  std::size_t holeCount() const { return HoleCentres.size(); }
+  const Vec3& holeCentre(std::size_t j) const { return HoleCentres[j]; }
+  /// Projects hole @p j's centre (a hole of more than three edges) and measures how far the cloud is.
+  void evaluateHole(std::size_t j, Workspace& ws);
+  /// Closes the holes findHoles() found, as evaluateHole() judged them, and counts the topology.
+  void closeHoles(SurfaceMesh& mesh);
+
+  /// The results of evaluateVertex() (CornerWidth doubles per corner), classifyCrossing()
+  /// (EvidenceWidth per crossing) and evaluateHole() (HoleWidth per hole) as flat arrays, and
+  /// back: what a StageSplit exchanges.
   static constexpr std::size_t CornerWidth = 5;
   static constexpr std::size_t EvidenceWidth = 24;
+  static constexpr std::size_t HoleWidth = EvidenceWidth + 1;
   std::vector<double> cornerValues() const;
   void setCornerValues(const std::vector<double>& values);
   std::vector<double> crossingEvidence() const;
   void setCrossingEvidence(const std::vector<double>& values);
+  std::vector<double> holeValues() const;
+  void setHoleValues(const std::vector<double>& values);
 
 private:
   using Key = std::uint64_t;
@@ -197,7 +252,7 @@ private:
   Key keyOf(const std::array<long long, 3>& c) const;
   std::array<long long, 3> coordsOf(Key k) const;
   Vec3 positionOf(Key k) const;
-  void buildBand();
+  void sizeGrid();
   void linkNeighbours();
   void contourSimplex(const std::array<std::uint32_t, 4>& corners, const std::array<int, 4>& bits, int count);
   std::uint32_t crossingOn(std::uint32_t lower, std::uint32_t upper, int direction);
@@ -211,13 +266,15 @@ private:
   /// (sorted (lower, higher) vertex pairs), or none; every triangle unfolded when @p unfolded.
   std::vector<std::array<std::uint32_t, 3>> triangulateHole(const std::vector<std::uint32_t>& hole,
     const SurfaceMesh& mesh, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges, bool unfolded) const;
-  void closeSmallHoles(SurfaceMesh& mesh, Workspace& ws);
 
-  const SurfaceDefinition& Surface;
+  const SurfaceDefinition* Surface = nullptr;
   MeshOptions Options;
-  CloudNormals Normals; ///< the cloud's own normals, for the domain test of the crossings
+  MeshFrame Frame;
+  /// The cloud's own normals, for the domain test of the crossings (none: computed each time).
+  std::unique_ptr<CloudNormals> Normals;
   int Dimension = 3;
   double Cell = 0.0;
+  long long Reach = 0; ///< the band's width in cells
   Vec3 Origin = Vec3::Zero();
   std::array<long long, 3> Size{ { 1, 1, 1 } };
   std::vector<Key> Cells;          ///< band cells, by the key of their lowest corner, sorted
@@ -234,6 +291,10 @@ private:
   std::vector<std::uint32_t> CrossingOfEdge;
   std::vector<std::array<std::uint32_t, 3>> Triangles;
   std::vector<std::array<std::uint32_t, 2>> Segments;
+  std::vector<std::vector<std::uint32_t>> Holes; ///< findHoles(): small holes' vertex loops
+  std::vector<Vec3> HoleCentres;                 ///< their vertices' centroids
+  std::vector<DomainEvidence> HoleEvidence;      ///< evaluateHole(): each centre's projection (more than 3 edges)
+  std::vector<double> HoleCloudSqDist;           ///< and its squared distance to the cloud
   MeshStatistics Statistics;
 };
 
@@ -250,8 +311,31 @@ struct MeshTimings
   double band = 0.0, corners = 0.0, orient = 0.0, contour = 0.0, projection = 0.0, finish = 0.0;
 };
 
+/// One of SurfaceMesher's three parallel stages, as runMeshStages() hands it out: evaluate() for
+/// every index below count (each at position(i), for a caller that needs the items' region), whose
+/// results get() and set() move as flat arrays of width doubles per item; share is its part of the
+/// whole run's progress.
+struct MeshStage
+{
+  std::size_t count = 0;
+  std::function<Vec3(std::size_t)> position;
+  void (SurfaceMesher::*evaluate)(std::size_t, Workspace&) = nullptr;
+  std::vector<double> (SurfaceMesher::*get)() const = nullptr;
+  void (SurfaceMesher::*set)(const std::vector<double>&) = nullptr;
+  std::size_t width = 0;
+  LoopShare share{ 0.0, 1.0 };
+};
+
 /**
- * All stages, the two parallel ones through @p loop (the corners' values, then the crossings'
+ * The stages after the band, in order: each parallel stage through @p run (which evaluates it in
+ * whatever way the caller distributes work, and returns false to stop: no mesh then), the others
+ * on this thread. Fills @p timings from corners to finish.
+ */
+std::optional<SurfaceMesh> runMeshStages(
+  SurfaceMesher& mesher, const std::function<bool(const MeshStage&)>& run, MeshTimings& timings);
+
+/**
+ * All stages, the three parallel ones through @p loop (the corners' values, then the crossings'
  * projections: about 45% and 50% of the work): the core's one-call entry point. Returns nothing
  * when the loop stopped early (the user aborted; with @p split, when any part did). Fills
  * @p timings when given. With @p split this process computes only its part of those two stages.

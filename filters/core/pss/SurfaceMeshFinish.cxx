@@ -2,6 +2,7 @@
 // The mesher's last stage (SurfaceMesher::finish): keeping the triangles whose corners are in the
 // domain, removing small pieces, closing small holes, and the topology and measures of the result.
 // The band, the corners' values, the orientation and the contouring are in SurfaceMesh.cxx.
+#include "pss/Kernel.h"
 #include "pss/PointIndex.h"
 #include "pss/SurfaceMesh.h"
 
@@ -319,6 +320,18 @@ void countTopology(SurfaceMesh& mesh)
 
 SurfaceMesh SurfaceMesher::finish(Workspace& ws)
 {
+  SurfaceMesh mesh = assemble();
+  findHoles(mesh);
+  for (std::size_t j = 0; j < holeCount(); ++j)
+  {
+    evaluateHole(j, ws);
+  }
+  closeHoles(mesh);
+  return mesh;
+}
+
+SurfaceMesh SurfaceMesher::assemble()
+{
   SurfaceMesh mesh;
   mesh.dimension = Dimension;
   const std::size_t n = Crossings.size();
@@ -372,7 +385,7 @@ SurfaceMesh SurfaceMesher::finish(Workspace& ws)
   {
     std::vector<std::array<std::uint32_t, 3>> kept;
     std::copy_if(Triangles.begin(), Triangles.end(), std::back_inserter(kept), keepTriangle);
-    const double h = Surface.h();
+    const double h = Frame.h;
     const std::vector<char> large =
       largePieces(kept, point, Options.minPieceArea * h * h, Statistics.removedPieces);
     const std::vector<char> covered =
@@ -412,9 +425,6 @@ SurfaceMesh SurfaceMesher::finish(Workspace& ws)
   mesh.crossings = std::move(crossing);
   mesh.evidence = std::move(Evidence);
   Crossings = {};
-  closeSmallHoles(mesh, ws);
-  mesh.statistics = Statistics;
-  countTopology(mesh);
   return mesh;
 }
 
@@ -596,13 +606,42 @@ std::vector<std::array<std::uint32_t, 3>> SurfaceMesher::triangulateHole(const s
   return fill;
 }
 
-void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
+void SurfaceMesher::findHoles(const SurfaceMesh& mesh)
 {
-  if (Dimension != 3 || Options.maxHoleEdges < 3)
+  Holes.clear();
+  if (Dimension == 3 && Options.maxHoleEdges >= 3)
   {
-    return;
+    Holes = smallHoles(mesh);
   }
-  const std::vector<std::vector<std::uint32_t>> holes = smallHoles(mesh);
+  HoleCentres.assign(Holes.size(), Vec3::Zero());
+  for (std::size_t j = 0; j < Holes.size(); ++j)
+  {
+    const std::vector<std::uint32_t>& hole = Holes[j];
+    for (const std::uint32_t v : hole)
+    {
+      HoleCentres[j] += mesh.points[v] / static_cast<double>(hole.size());
+    }
+  }
+  HoleEvidence.assign(Holes.size(), DomainEvidence{});
+  HoleCloudSqDist.assign(Holes.size(), 0.0);
+}
+
+void SurfaceMesher::evaluateHole(std::size_t j, Workspace& ws)
+{
+  const Vec3& centre = HoleCentres[j];
+  if (Holes[j].size() > 3)
+  {
+    HoleEvidence[j] = classifyStart(*Surface, centre, Options.projection, Options.domain, ws, Normals.get());
+  }
+  const PointIndex& index = Surface->index();
+  const double sqDist = index.nearest(centre).second;
+  noteReach(index, index.restrict(centre), sqDist, ws);
+  HoleCloudSqDist[j] = sqDist;
+}
+
+void SurfaceMesher::closeHoles(SurfaceMesh& mesh)
+{
+  const std::vector<std::vector<std::uint32_t>>& holes = Holes;
   // The mesh's edges between two vertices of these holes, sorted (a diagonal of a hole's
   // triangulation must not be one of them), grown as holes are closed.
   std::vector<char> onHole(mesh.points.size(), 0);
@@ -628,18 +667,18 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
   }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  const double h = Surface.h();
+  const double h = Frame.h;
   Pieces pieces = piecesOf(mesh.triangles, mesh.points);
   const auto largest = static_cast<std::size_t>(
     std::max_element(pieces.measure.begin(), pieces.measure.end()) - pieces.measure.begin());
-  for (const std::vector<std::uint32_t>& hole : holes)
+  for (std::size_t j = 0; j < holes.size(); ++j)
   {
+    const std::vector<std::uint32_t>& hole = holes[j];
     const std::size_t k = hole.size();
-    Vec3 centre = Vec3::Zero();
+    const Vec3& centre = HoleCentres[j];
     Vec3 normalSum = Vec3::Zero();
     for (const std::uint32_t v : hole)
     {
-      centre += mesh.points[v] / static_cast<double>(k);
       normalSum += mesh.normals[v];
     }
     // The border's half-edges a -> b belong to the triangles around the hole: the triangles that
@@ -657,7 +696,7 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
     }
     else
     {
-      ev = classifyStart(Surface, centre, Options.projection, Options.domain, ws, &Normals);
+      ev = HoleEvidence[j];
       const Direction& d = ev.projection.direction;
       fan = ev.label == DomainLabel::InDomain &&
         (ev.projection.point - centre).norm() <= Options.maxVertexTravel * Cell && d.defined;
@@ -686,8 +725,7 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
       // inside out (the triangles around it overlap it by a fraction of a cell) or a pleat of the
       // contour twisted it, and any closing lies nearer the surface than the hole. A smaller
       // piece's outline walks the wrong way round too, but closing it would make a closed lens.
-      const bool scanHasData = Surface.index().nearest(centre).second <=
-        Options.domain.maxDistance * h * Options.domain.maxDistance * h;
+      const bool scanHasData = HoleCloudSqDist[j] <= Options.domain.maxDistance * h * Options.domain.maxDistance * h;
       const bool anyFold = scanHasData && pieces.sets.find(hole[0]) == largest;
       std::vector<std::array<std::uint32_t, 3>> folding;
       if (anyFold)
@@ -732,6 +770,9 @@ void SurfaceMesher::closeSmallHoles(SurfaceMesh& mesh, Workspace& ws)
     mesh.triangles.insert(mesh.triangles.end(), fill.begin(), fill.end());
     ++Statistics.closedHoles;
   }
+  Holes = {};
+  mesh.statistics = Statistics;
+  countTopology(mesh);
 }
 
 } // namespace pss
