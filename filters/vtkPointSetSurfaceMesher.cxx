@@ -416,9 +416,8 @@ std::optional<pss::SurfaceMesh> vtkPointSetSurfaceMesher::MeshWithGhostPoints(vt
           x[2] = p.z();
         },
         [&](const std::vector<std::uint32_t>& todo, std::vector<unsigned char>& escaped) {
-          // No cache of the cloud's normals: one read beyond this rank's region must flag every
-          // evaluation that uses it. Aborting is not offered: every rank goes on, so none waits.
-          mesher.useSurface(*this->Surface->GetDefinition(), false);
+          // Aborting is not offered: every rank goes on, so that none waits.
+          mesher.useSurface(*this->Surface->GetDefinition());
           pss::forEachInOrder(todo, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
             ws.leftCompleteRegion = false;
             (mesher.*stage.evaluate)(k, ws);

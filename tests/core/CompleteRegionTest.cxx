@@ -6,6 +6,7 @@
 
 #include "TestClouds.h"
 
+#include "pss/Domain.h"
 #include "pss/ExtremalSurface.h"
 #include "pss/SurfaceDefinition.h"
 #include "pss/Workspace.h"
@@ -128,12 +129,15 @@ TEST(CompleteRegion, CoordinateOrderRanksByCoordinatesThenIndex)
   PointIndex index({ Vec3(1, 0, 0), Vec3(0, 2, 0), Vec3(0, 1, 5), Vec3(1, 0, 0), Vec3(0, 0, 0), Vec3(-0.0, 0, 0) }, 3);
   index.setCoordinateOrder(true);
   ASSERT_TRUE(index.coordinateOrder());
-  std::vector<Vec3> ordered;
-  for (std::uint32_t r = 0; r < index.size(); ++r)
+  std::vector<Vec3> ordered(index.size());
+  std::vector<bool> seen(index.size(), false);
+  for (std::uint32_t i = 0; i < index.size(); ++i)
   {
-    const std::uint32_t i = index.pointAtCoordinateRank(r);
-    EXPECT_EQ(index.coordinateRank(i), r);
-    ordered.push_back(index.point(i));
+    const std::uint32_t r = index.coordinateRank(i);
+    ASSERT_LT(r, index.size());
+    EXPECT_FALSE(seen[r]); // a permutation
+    seen[r] = true;
+    ordered[r] = index.point(i);
   }
   EXPECT_TRUE(std::signbit(ordered[0].x()));
   EXPECT_EQ(ordered[1], Vec3(0, 0, 0));
@@ -159,4 +163,30 @@ TEST(CompleteRegion, AnEvaluationBeyondTheRegionIsFlagged)
   ws.leftCompleteRegion = false;
   project(*surface, Vec3(0.1, 0.0, 0.1), ProjectionOptions{}, ws);
   EXPECT_TRUE(ws.leftCompleteRegion);
+}
+
+TEST(CompleteRegion, ACachedCloudNormalFromBeyondTheRegionFlagsEveryUse)
+{
+  // A cloud point 0.1 inside the region's side at x = 0.2: its neighbourhood (3 h = 0.6) reaches
+  // past it, so every evaluation that reads its normal, from the cache or not, is flagged.
+  PointIndex local(planeCloud(1.0, 0.1), 3);
+  local.setCompleteRegion(Vec3(-inf, -inf, -inf), Vec3(0.2, inf, inf));
+  const auto surface = makeSurface(Variant::CenterOfMass, local, params(0.2));
+  const CloudNormals normals(*surface);
+  const std::size_t border = local.nearest(Vec3(0.1, 0.0, 0.0)).first;
+  const std::size_t inside = local.nearest(Vec3(-0.8, 0.0, 0.0)).first;
+  for (int use = 0; use < 2; ++use) // computed, then from the cache
+  {
+    Workspace ws;
+    normals.at(border, ws);
+    EXPECT_TRUE(ws.leftCompleteRegion) << "use " << use;
+    Workspace clean;
+    normals.at(inside, clean);
+    EXPECT_FALSE(clean.leftCompleteRegion) << "use " << use;
+  }
+  // A flag already set stays set.
+  Workspace flagged;
+  flagged.leftCompleteRegion = true;
+  normals.at(inside, flagged);
+  EXPECT_TRUE(flagged.leftCompleteRegion);
 }

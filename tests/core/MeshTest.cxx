@@ -246,7 +246,7 @@ TEST(Mesh, BandFromThePiecesCellsGivesTheWholeMesh)
   const std::vector<std::uint64_t> more = mesher.cellKeysOf(west);
   keys.insert(keys.end(), more.begin(), more.end()); // unsorted, with repeats along x = 0
   mesher.buildBand(std::move(keys));
-  mesher.useSurface(*surface, false);
+  mesher.useSurface(*surface);
   pss::Workspace ws;
   for (std::size_t i = 0; i < mesher.gridVertexCount(); ++i)
   {

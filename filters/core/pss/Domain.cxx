@@ -73,18 +73,25 @@ CloudNormals::CloudNormals(const SurfaceDefinition& s)
 Direction CloudNormals::at(std::size_t point, Workspace& ws) const
 {
   std::atomic<std::uint8_t>& state = State[point];
-  if (state.load(std::memory_order_acquire) == 2)
+  const std::uint8_t stored = state.load(std::memory_order_acquire);
+  if (stored >= 2)
   {
+    ws.leftCompleteRegion = ws.leftCompleteRegion || stored == 3;
     return Normal[point];
   }
+  // Whether this normal's own reads left the region, apart from what ws had flagged before.
+  const bool flaggedBefore = ws.leftCompleteRegion;
+  ws.leftCompleteRegion = false;
   const Direction d = cloudNormalAt(Surface, point, ws);
+  const bool escaped = ws.leftCompleteRegion;
+  ws.leftCompleteRegion = flaggedBefore || escaped;
   std::uint8_t expected = 0;
   // Only the thread that claims the slot writes it; one that finds it being written keeps its own
   // copy (the same value).
   if (state.compare_exchange_strong(expected, 1, std::memory_order_acq_rel))
   {
     Normal[point] = d;
-    state.store(2, std::memory_order_release);
+    state.store(escaped ? 3 : 2, std::memory_order_release);
   }
   return d;
 }

@@ -66,13 +66,16 @@ class CloudNormals
 {
 public:
   explicit CloudNormals(const SurfaceDefinition& s);
-  /// The normal at cloud point @p point (computed in @p ws when not yet kept).
+  /// The normal at cloud point @p point (computed in @p ws when not yet kept). When computing it
+  /// read beyond the index's complete region (a rank's piece and ghosts), every call for that
+  /// point sets @p ws.leftCompleteRegion, not only the one that computed it.
   Direction at(std::size_t point, Workspace& ws) const;
 
 private:
   const SurfaceDefinition& Surface;
   mutable std::vector<Direction> Normal;
-  /// Per point: 0 not computed, 1 being computed by a thread, 2 stored in Normal.
+  /// Per point: 0 not computed, 1 being computed by a thread, 2 stored in Normal, 3 stored but
+  /// computed from a neighbourhood beyond the complete region.
   mutable std::unique_ptr<std::atomic<std::uint8_t>[]> State;
 };
 

@@ -504,20 +504,20 @@ void CandidateCache::fetch(const PointIndex& index, const SurfaceParameters& par
   }
   else
   {
-  index.forEachLeafInBall(y, sqRadius, leaves, [&](std::uint32_t begin, std::uint32_t end) {
-    reserve(n + (end - begin));
-    double* x = px.data();
-    double* yy = py.data();
-    double* z = pz.data();
-    for (std::uint32_t i = begin; i < end; ++i)
-    {
-      const Vec3& p = index.point(i);
-      x[n] = p.x();
-      yy[n] = p.y();
-      z[n] = p.z();
-      n += (p - y).squaredNorm() < sqRadius ? 1 : 0;
-    }
-  });
+    index.forEachLeafInBall(y, sqRadius, leaves, [&](std::uint32_t begin, std::uint32_t end) {
+      reserve(n + (end - begin));
+      double* x = px.data();
+      double* yy = py.data();
+      double* z = pz.data();
+      for (std::uint32_t i = begin; i < end; ++i)
+      {
+        const Vec3& p = index.point(i);
+        x[n] = p.x();
+        yy[n] = p.y();
+        z[n] = p.z();
+        n += (p - y).squaredNorm() < sqRadius ? 1 : 0;
+      }
+    });
   }
   count = n;
   // The ball holds every point within radius only while the squared distances are finite.

@@ -144,19 +144,20 @@ void PointIndex::setCompleteRegion(const Vec3& lo, const Vec3& hi)
 void PointIndex::setCoordinateOrder(bool on)
 {
   CoordinateOrder = on;
+  CoordinateRanks = {};
   if (!on)
   {
-    CoordinateRanks = {};
-    ByCoordinateRank = {};
     return;
   }
-  ByCoordinateRank.resize(Points.size());
-  std::iota(ByCoordinateRank.begin(), ByCoordinateRank.end(), 0u);
+  // One comparison sort on one thread, once per prepared index (a rank prepares its piece and
+  // ghosts once per round).
+  std::vector<std::uint32_t> byRank(Points.size());
+  std::iota(byRank.begin(), byRank.end(), 0u);
   // A total order on the values: -0.0 before +0.0, so that points whose terms differ only in the
   // sign of a zero are still told apart; equal points (duplicates) by index, which cannot change
   // a sum since their terms are the same.
   const auto less = [](double a, double b) { return a < b || (a == b && std::signbit(a) && !std::signbit(b)); };
-  std::sort(ByCoordinateRank.begin(), ByCoordinateRank.end(), [&](std::uint32_t a, std::uint32_t b) {
+  std::sort(byRank.begin(), byRank.end(), [&](std::uint32_t a, std::uint32_t b) {
     const Vec3& p = Points[a];
     const Vec3& q = Points[b];
     for (int d = 0; d < 3; ++d)
@@ -173,9 +174,9 @@ void PointIndex::setCoordinateOrder(bool on)
     return a < b;
   });
   CoordinateRanks.resize(Points.size());
-  for (std::size_t r = 0; r < ByCoordinateRank.size(); ++r)
+  for (std::size_t r = 0; r < byRank.size(); ++r)
   {
-    CoordinateRanks[ByCoordinateRank[r]] = static_cast<std::uint32_t>(r);
+    CoordinateRanks[byRank[r]] = static_cast<std::uint32_t>(r);
   }
 }
 

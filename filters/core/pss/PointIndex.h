@@ -75,9 +75,8 @@ public:
   void setCoordinateOrder(bool on);
   bool coordinateOrder() const { return CoordinateOrder; }
   /// With coordinateOrder(): point @p i's place in the coordinate order (equal points, whose
-  /// terms are equal, are ranked by index), and the point at place @p r.
+  /// terms are equal, are ranked by index).
   std::uint32_t coordinateRank(std::size_t i) const { return CoordinateRanks[i]; }
-  std::uint32_t pointAtCoordinateRank(std::uint32_t r) const { return ByCoordinateRank[r]; }
 
   /// A number no other PointIndex of this process has: a safe cache key (addresses get reused).
   std::uint64_t serial() const { return Serial; }
@@ -128,8 +127,7 @@ private:
   std::size_t Skipped = 0;
   std::uint64_t Serial = 0;
   bool CoordinateOrder = false;
-  std::vector<std::uint32_t> CoordinateRanks;   // with CoordinateOrder: rank of point i
-  std::vector<std::uint32_t> ByCoordinateRank;  // and its inverse
+  std::vector<std::uint32_t> CoordinateRanks; // with CoordinateOrder: rank of point i
   Vec3 Centroid = Vec3::Zero();
   Vec3 BoundsMin = Vec3::Zero();
   Vec3 BoundsMax = Vec3::Zero();

@@ -176,10 +176,10 @@ SurfaceMesher::SurfaceMesher(const MeshFrame& frame, const MeshOptions& options)
   sizeGrid();
 }
 
-void SurfaceMesher::useSurface(const SurfaceDefinition& surface, bool cacheCloudNormals)
+void SurfaceMesher::useSurface(const SurfaceDefinition& surface)
 {
   Surface = &surface;
-  Normals = cacheCloudNormals ? std::make_unique<CloudNormals>(surface) : nullptr;
+  Normals = std::make_unique<CloudNormals>(surface);
 }
 
 SurfaceMesher::Key SurfaceMesher::keyOf(const std::array<long long, 3>& c) const

@@ -194,10 +194,8 @@ public:
   /// Builds the band around the cells @p occupied (cellKeysOf() of the whole cloud, or of its
   /// pieces merged: sorted and made unique here). Throws std::invalid_argument when too large.
   void buildBand(std::vector<std::uint64_t> occupied);
-  /// The surface the loops evaluate from now on; @p cacheCloudNormals keeps the cloud normals
-  /// that the domain tests compute (off when the surface holds part of the cloud: a normal read
-  /// beyond its complete region must be flagged for every evaluation that uses it).
-  void useSurface(const SurfaceDefinition& surface, bool cacheCloudNormals = true);
+  /// The surface the loops evaluate from now on.
+  void useSurface(const SurfaceDefinition& surface);
 
   std::size_t gridVertexCount() const { return Keys.size(); }
   Vec3 gridVertex(std::size_t i) const { return positionOf(Keys[i]); }
@@ -270,7 +268,7 @@ private:
   const SurfaceDefinition* Surface = nullptr;
   MeshOptions Options;
   MeshFrame Frame;
-  /// The cloud's own normals, for the domain test of the crossings (none: computed each time).
+  /// The cloud's own normals, for the domain test of the crossings and hole centres.
   std::unique_ptr<CloudNormals> Normals;
   int Dimension = 3;
   double Cell = 0.0;
