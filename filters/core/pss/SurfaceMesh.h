@@ -169,10 +169,9 @@ struct StageSplit
  * Runs the stages of the file comment. Construct (validates and sizes the band, throwing
  * std::invalid_argument with the cell count when it is absurd), then call evaluateVertex() for
  * every index below gridVertexCount(), orient(), contour(), classifyCrossing() for every index
- * below crossingCount(), and finish(). The two loops may run on any number of threads (distinct
- * indices, a Workspace per thread); the other stages are sequential and cheap. finish() is
- * assemble(), findHoles(), evaluateHole() for every index below holeCount() (a third loop) and
- * closeHoles().
+ * below crossingCount(), and finish(), which is assemble(), findHoles(), evaluateHole() for every
+ * index below holeCount() and closeHoles(). The three loops may run on any number of threads
+ * (distinct indices, a Workspace per thread); the other stages are sequential and cheap.
  *
  * A process that holds only part of the cloud (a distributed run with ghost points) constructs
  * from a MeshFrame, gives buildBand() the cells of every rank's points (cellKeysOf() of each
