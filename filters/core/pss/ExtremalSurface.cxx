@@ -373,9 +373,16 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   }
   if (memory.stabilityEstimated)
   {
-    // Stopped at an intermediate iterate (iteration limit, no extremum): fit it again in full.
+    // Stopped at an intermediate iterate (iteration limit, no extremum) or on the plane of one:
+    // fit it again in full.
     memory.estimateStability = false;
     dir = fitAt(fitted);
+    if (!dir.defined && res.reason == StopReason::Converged)
+    {
+      // The full fit finds no direction where the estimate did (found by the fuzzer only, with
+      // coordinates near 1e303, where squared distances overflow): not a converged projection.
+      res.reason = StopReason::UndefinedDirection;
+    }
   }
   res.point = x;
   res.direction = dir;
