@@ -103,12 +103,17 @@ vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n)
 
 void AddSurfaceFieldData(vtkDataObject* output, vtkPointSetSurface* surface)
 {
+  AddSurfaceFieldData(output, surface->GetEffectiveScale(), surface->GetEffectiveDimension());
+}
+
+void AddSurfaceFieldData(vtkDataObject* output, double h, int dimension)
+{
   auto scale = NewArray<vtkDoubleArray>("ScaleFactor", 1, 1);
-  scale->SetValue(0, surface->GetEffectiveScale());
-  auto dimension = NewArray<vtkIntArray>("Dimension", 1, 1);
-  dimension->SetValue(0, surface->GetEffectiveDimension());
+  scale->SetValue(0, h);
+  auto dimensionArray = NewArray<vtkIntArray>("Dimension", 1, 1);
+  dimensionArray->SetValue(0, dimension);
   output->GetFieldData()->AddArray(scale);
-  output->GetFieldData()->AddArray(dimension);
+  output->GetFieldData()->AddArray(dimensionArray);
 }
 
 vtkMTimeType LatestMTime(vtkMTimeType own, vtkObject* part)
@@ -186,6 +191,20 @@ bool PrepareDistributedSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surf
   return gathered && PrepareSurface(algorithm, surface, gathered, what, true, coordinateOrder);
 }
 
+GatherLayout LayoutOfAllGather(vtkMultiProcessController* controller, vtkIdType length)
+{
+  GatherLayout layout;
+  layout.Lengths.resize(static_cast<std::size_t>(controller->GetNumberOfProcesses()));
+  controller->AllGather(&length, layout.Lengths.data(), 1);
+  layout.Offsets.resize(layout.Lengths.size());
+  for (std::size_t r = 0; r < layout.Lengths.size(); ++r)
+  {
+    layout.Offsets[r] = layout.Total;
+    layout.Total += layout.Lengths[r];
+  }
+  return layout;
+}
+
 vtkSmartPointer<vtkPolyData> GatherCloud(
   vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud)
 {
@@ -195,30 +214,21 @@ vtkSmartPointer<vtkPolyData> GatherCloud(
   {
     cloud->GetPoint(i, local.data() + 3 * i);
   }
-  const int ranks = controller->GetNumberOfProcesses();
-  std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks));
-  std::vector<vtkIdType> offsets(static_cast<std::size_t>(ranks));
   const vtkIdType sendLength = 3 * n;
-  controller->AllGather(&sendLength, lengths.data(), 1);
-  vtkIdType total = 0;
-  for (int r = 0; r < ranks; ++r)
+  GatherLayout layout = LayoutOfAllGather(controller, sendLength);
+  if (!layout.FitsOneMessage())
   {
-    offsets[static_cast<std::size_t>(r)] = total;
-    total += lengths[static_cast<std::size_t>(r)];
-  }
-  // MPI counts are ints; every rank knows the total, so all of them fail here together.
-  if (total > vtkIdType(INT_MAX))
-  {
-    vtkErrorWithObjectMacro(algorithm, << "the cloud of all ranks (" << total / 3
+    vtkErrorWithObjectMacro(algorithm, << "the cloud of all ranks (" << layout.Total / 3
                                        << " points) exceeds one MPI message (2^31 - 1 coordinates)");
     return nullptr;
   }
   auto coordinates = vtkSmartPointer<vtkDoubleArray>::New();
   coordinates->SetNumberOfComponents(3);
-  coordinates->SetNumberOfTuples(total / 3);
-  if (total > 0)
+  coordinates->SetNumberOfTuples(layout.Total / 3);
+  if (layout.Total > 0)
   {
-    controller->AllGatherV(local.data(), coordinates->GetPointer(0), sendLength, lengths.data(), offsets.data());
+    controller->AllGatherV(
+      local.data(), coordinates->GetPointer(0), sendLength, layout.Lengths.data(), layout.Offsets.data());
   }
   vtkNew<vtkPoints> points;
   points->SetData(coordinates);
@@ -268,24 +278,15 @@ void ChainedCentroid(vtkMultiProcessController* controller, const GhostRun& run,
 // cloud is too large for one message.
 double RootAutomaticScale(vtkMultiProcessController* controller, vtkPointSetSurface* surface, const GhostRun& run)
 {
-  const int ranks = controller->GetNumberOfProcesses();
   const vtkIdType length = static_cast<vtkIdType>(run.Own.size());
-  std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks));
-  controller->AllGather(&length, lengths.data(), 1);
-  std::vector<vtkIdType> offsets(static_cast<std::size_t>(ranks));
-  vtkIdType total = 0;
-  for (int r = 0; r < ranks; ++r)
-  {
-    offsets[static_cast<std::size_t>(r)] = total;
-    total += lengths[static_cast<std::size_t>(r)];
-  }
-  if (total > vtkIdType(INT_MAX))
+  GatherLayout layout = LayoutOfAllGather(controller, length);
+  if (!layout.FitsOneMessage())
   {
     return -1.0;
   }
   const bool root = controller->GetLocalProcessId() == 0;
-  std::vector<double> all(root ? static_cast<std::size_t>(total) : 0);
-  controller->GatherV(run.Own.data(), all.data(), length, lengths.data(), offsets.data(), 0);
+  std::vector<double> all(root ? static_cast<std::size_t>(layout.Total) : 0);
+  controller->GatherV(run.Own.data(), all.data(), length, layout.Lengths.data(), layout.Offsets.data(), 0);
   double h = 0.0;
   if (root)
   {
@@ -597,14 +598,7 @@ void AddGlobalPointIds(vtkPointData* pd, vtkIdType first, vtkIdType n)
 
 vtkIdType GlobalOffset(vtkMultiProcessController* controller, vtkIdType count)
 {
-  std::vector<vtkIdType> counts(static_cast<std::size_t>(controller->GetNumberOfProcesses()));
-  controller->AllGather(&count, counts.data(), 1);
-  vtkIdType offset = 0;
-  for (int r = 0; r < controller->GetLocalProcessId(); ++r)
-  {
-    offset += counts[static_cast<std::size_t>(r)];
-  }
-  return offset;
+  return LayoutOfAllGather(controller, count).Offsets[static_cast<std::size_t>(controller->GetLocalProcessId())];
 }
 
 namespace

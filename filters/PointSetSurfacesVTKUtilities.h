@@ -15,6 +15,7 @@
 
 #include "pss/Types.h"
 
+#include <climits>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -53,6 +54,9 @@ vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n);
 /// Records the h and the dimension a prepared @p surface used as field data "ScaleFactor" and
 /// "Dimension" of @p output, so files written downstream say how they were made.
 void AddSurfaceFieldData(vtkDataObject* output, vtkPointSetSurface* surface);
+/// The same from the values themselves (a distributed run's h and dimension, whatever surface
+/// the rank prepared last).
+void AddSurfaceFieldData(vtkDataObject* output, double h, int dimension);
 
 /// The later of @p own and the modification time of @p part (just @p own when part is null):
 /// how the filters fold their vtkPointSetSurface into GetMTime().
@@ -85,6 +89,21 @@ vtkMultiProcessController* MultiProcessController();
 bool PrepareDistributedSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
   vtkMultiProcessController* controller, vtkPointSet* cloud, const char* what, vtkSmartPointer<vtkPolyData>& gathered,
   bool coordinateOrder = false);
+
+/// Where every rank's items go in an AllGatherV of @p length items from this rank.
+struct GatherLayout
+{
+  std::vector<vtkIdType> Lengths; ///< per rank
+  std::vector<vtkIdType> Offsets; ///< per rank, in rank order
+  vtkIdType Total = 0;
+  /// MPI counts are ints: beyond this the exchange cannot be one message (every rank knows Total,
+  /// so all of them find it together).
+  bool FitsOneMessage() const { return Total <= vtkIdType(INT_MAX); }
+};
+
+/// Collective over @p controller: one AllGather of every rank's @p length. (Not const where used:
+/// vtkMultiProcessController's AllGatherV and GatherV take the counts by non-const pointer.)
+GatherLayout LayoutOfAllGather(vtkMultiProcessController* controller, vtkIdType length);
 
 /**
  * Collective over @p controller: every rank's @p cloud points (nullptr counts as none) as one

@@ -213,26 +213,17 @@ namespace
 bool GatherCellKeys(vtkMultiProcessController* controller, const std::vector<std::uint64_t>& own,
   std::vector<std::uint64_t>& all, bool& tooLarge)
 {
-  const int ranks = controller->GetNumberOfProcesses();
   const vtkIdType length = static_cast<vtkIdType>(own.size());
-  std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks));
-  controller->AllGather(&length, lengths.data(), 1);
-  std::vector<vtkIdType> offsets(lengths.size());
-  vtkIdType total = 0;
-  for (std::size_t r = 0; r < lengths.size(); ++r)
-  {
-    offsets[r] = total;
-    total += lengths[r];
-  }
-  if (total > vtkIdType(INT_MAX))
+  pss_vtk::GatherLayout layout = pss_vtk::LayoutOfAllGather(controller, length);
+  if (!layout.FitsOneMessage())
   {
     tooLarge = true;
     return false;
   }
   // Keys are below 2^60, so they travel as vtkIdType (64-bit) unchanged.
   const std::vector<vtkIdType> mine(own.begin(), own.end());
-  std::vector<vtkIdType> received(static_cast<std::size_t>(total));
-  controller->AllGatherV(mine.data(), received.data(), length, lengths.data(), offsets.data());
+  std::vector<vtkIdType> received(static_cast<std::size_t>(layout.Total));
+  controller->AllGatherV(mine.data(), received.data(), length, layout.Lengths.data(), layout.Offsets.data());
   all.assign(received.begin(), received.end());
   return true;
 }
@@ -348,13 +339,8 @@ int vtkPointSetSurfaceMesher::RequestData(
   this->TimingReport = timing.str();
   if (ghosts)
   {
-    // The one-process h and dimension; the rank's last surface holds only part of the cloud.
-    auto scale = pss_vtk::NewArray<vtkDoubleArray>("ScaleFactor", 1, 1);
-    scale->SetValue(0, run.H);
-    output->GetFieldData()->AddArray(scale);
-    auto dimension = pss_vtk::NewArray<vtkIntArray>("Dimension", 1, 1);
-    dimension->SetValue(0, run.Dimension);
-    output->GetFieldData()->AddArray(dimension);
+    // The one-process h and dimension: a rank whose last block was empty prepared no surface.
+    pss_vtk::AddSurfaceFieldData(output, run.H, run.Dimension);
     pss_vtk::AddGhostFieldData(output, this->GhostRounds, run);
   }
   else
