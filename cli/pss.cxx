@@ -139,6 +139,10 @@ void AddSurfaceOptions(OptionTable& t, vtkPointSetSurface* s)
     [s](const std::string& v) { s->SetKernelCutoff(pss_cli::ToDouble("cutoff", v)); });
   t.Value("quadrature", "N", "Gauss-Hermite nodes per axis for e_I (default 6)",
     [s](const std::string& v) { s->SetQuadratureOrder(pss_cli::ToInt("quadrature", v)); });
+  t.Value("delta-lattice", "S",
+    "integral and delta: spacing in h of the lattice delta is interpolated from (default 0.5; 0: exact at "
+    "every quadrature node)",
+    [s](const std::string& v) { s->SetDeltaLatticeSpacing(pss_cli::ToDouble("delta-lattice", v)); });
   t.Value("min-stability", "S", "n counts as undefined below this stability (default 1e-5)",
     [s](const std::string& v) { s->SetMinimumStability(pss_cli::ToDouble("min-stability", v)); });
 }

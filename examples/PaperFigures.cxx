@@ -4,6 +4,7 @@
  * Point Set Surface", as VTK data and PNG images, and checks the paper's claims as numbers.
  *
  *   pss-paper-figures [--out DIR] [--no-render] [--check] [--threads N] [--renderer SCRIPT]
+ *                     [--delta-lattice S]
  *
  * Everything is computed with the PointSetSurfaces VTK filters (projection with projection lines
  * and domain labels, field sampling on grids, energy glyphs) and stock VTK (vtkStreamTracer on the
@@ -89,6 +90,7 @@ struct Options
 
 const char* const Usage =
   "usage: pss-paper-figures [--out DIR] [--no-render] [--check] [--threads N] [--renderer SCRIPT]\n"
+  "                         [--delta-lattice S]\n"
   "Reproduces the figures of Amenta & Kil, \"The Domain of a Point Set Surface\" (VTK files and\n"
   "PNG images in DIR, default ./paper-figures), prints the table of measured numbers and checks\n"
   "the paper's claims.\n"
@@ -96,6 +98,8 @@ const char* const Usage =
   "  --no-render       write the data and the table only, no PNG images\n"
   "  --check           exit with status 1 when a checked number misses its bound\n"
   "  --threads N       threads of the filters (default: all cores)\n"
+  "  --delta-lattice S the integral and delta definitions' lattice spacing in h (default 0.5;\n"
+  "                    0: delta exact at every quadrature node, the reference)\n"
   "  --renderer SCRIPT the pvbatch script (default: the source tree's render_paper_figures.py)\n";
 
 Options Parse(int argc, char** argv)
@@ -124,6 +128,17 @@ Options Parse(int argc, char** argv)
       o.check = true;
     else if (flag == "--renderer")
       o.renderer = value();
+    else if (flag == "--delta-lattice")
+    {
+      const std::string v = value();
+      char* end = nullptr;
+      const double s = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(s >= 0.0 && s <= 1.0))
+      {
+        throw std::invalid_argument("--delta-lattice expects a spacing in [0, 1] h, got '" + v + "'");
+      }
+      SetDeltaLatticeSpacing(s);
+    }
     else if (flag == "--threads")
     {
       const std::string v = value();

@@ -161,9 +161,23 @@ std::string VariantTitle(int variant)
   }
 }
 
+namespace
+{
+double LatticeSpacing = -1.0; // < 0: the filters' default
+}
+
+void SetDeltaLatticeSpacing(double spacing)
+{
+  LatticeSpacing = spacing;
+}
+
 vtkSmartPointer<vtkPointSetSurface> MakeSurface(const Scene& scene, int variant)
 {
   auto surface = vtkSmartPointer<vtkPointSetSurface>::New();
+  if (LatticeSpacing >= 0.0)
+  {
+    surface->SetDeltaLatticeSpacing(LatticeSpacing);
+  }
   surface->SetVariant(variant);
   surface->AutomaticScaleOff();
   surface->SetScaleFactor(scene.h);

@@ -75,6 +75,9 @@ vtkSmartPointer<vtkPolyData> MakePointCloud(const std::vector<pss::Vec3>& points
 
 /// A surface description for @p scene: the given variant, h fixed to scene.h, 2D.
 vtkSmartPointer<vtkPointSetSurface> MakeSurface(const Scene& scene, int variant);
+/// The DeltaLatticeSpacing of every surface MakeSurface makes from now on (the program's
+/// --delta-lattice; without a call, vtkPointSetSurface's default).
+void SetDeltaLatticeSpacing(double spacing);
 
 /// Axis-aligned bounds of the cloud grown by @p marginInH * h: {xmin, xmax, ymin, ymax}.
 std::vector<double> GrownBounds(const Scene& scene, double marginInH);

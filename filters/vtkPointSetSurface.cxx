@@ -170,6 +170,7 @@ pss::SurfaceParameters vtkPointSetSurface::Parameters(double h) const
   params.h = h;
   params.cutoff = this->KernelCutoff;
   params.quadratureOrder = this->QuadratureOrder;
+  params.deltaLattice = this->DeltaLatticeSpacing;
   params.minStability = this->MinimumStability;
   return params;
 }
@@ -219,6 +220,7 @@ void vtkPointSetSurface::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Dimension: " << this->Dimension << "\n";
   os << indent << "KernelCutoff: " << this->KernelCutoff << "\n";
   os << indent << "QuadratureOrder: " << this->QuadratureOrder << "\n";
+  os << indent << "DeltaLatticeSpacing: " << this->DeltaLatticeSpacing << "\n";
   os << indent << "MinimumStability: " << this->MinimumStability << "\n";
   os << indent << "EffectiveScale: " << this->EffectiveScale << "\n";
   os << indent << "EffectiveDimension: " << this->EffectiveDimension << "\n";

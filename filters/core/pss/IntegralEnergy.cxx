@@ -37,12 +37,29 @@ Vec3 inPlane(const Vec3& b1, const Vec3& b2, double phi)
 
 } // namespace
 
+namespace
+{
+
+// The quadrature's sums times the rule's Jacobian (h per in-plane axis).
+IntegralEnergy::PlaneIntegral scaled(IntegralEnergy::PlaneIntegral sums, double jacobian)
+{
+  sums.value *= jacobian;
+  sums.slope *= jacobian;
+  sums.tilt *= jacobian;
+  sums.curvature *= jacobian;
+  sums.tiltHessian *= jacobian;
+  return sums;
+}
+
+} // namespace
+
 IntegralEnergy::IntegralEnergy(const PointIndex& index, const SurfaceParameters& params)
   : Index(index)
   , Params(params)
   , Rule(gaussHermite(params.quadratureOrder))
   , RoughRule(gaussHermite(std::min(params.quadratureOrder, 3)))
   , Field(index, params)
+  , Lattice(Field)
 {
 }
 
@@ -105,6 +122,7 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
   const int p = Params.integrandPower;
   const Vec3 origin = Index.restrict(x);
   const bool planar = Index.dimension() == 2;
+  const bool lattice = Params.deltaLattice > 0.0;
   PlaneIntegral out;
   // The node at in-plane coordinates w = (u, v) (units of h) adds weight * F(delta), F = delta^p.
   // Moving the plane by t along a moves every node by t a; tilting a by s (tilted()'s
@@ -116,11 +134,11 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
     const Vec3 y = origin + h * (u * f.b1 + v * f.b2);
     if (order == Derivatives::None)
     {
-      const double d = Field.delta(y, ws);
+      const double d = lattice ? Lattice.value(y, ws) : Field.delta(y, ws);
       out.value += weight * (p == 2 ? d * d : d);
       return;
     }
-    const DeltaJet jet = Field.jet(y, f.a, ws);
+    const DeltaJet jet = lattice ? Lattice.jet(y, f.a, ws) : Field.jet(y, f.a, ws);
     const double d = jet.value;
     const double dF = p == 2 ? 2.0 * d : 1.0;
     const double ddF = p == 2 ? 2.0 : 0.0;
@@ -140,6 +158,18 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
   // all. The nodes are then visited by halves of the line, quarters of the plane, each with
   // the part of the fetch its nodes can need (a node's own gather then scans a few hundred
   // candidates instead of some 1,500).
+  if (lattice)
+  {
+    // The lattice's nodes gather their own neighbourhoods, brick by brick (DeltaLattice::node).
+    for (std::size_t j = 0; j < rule.nodes.size(); ++j)
+    {
+      for (std::size_t k = 0; k < (planar ? 1 : rule.nodes.size()); ++k)
+      {
+        accumulate(rule.nodes[j], planar ? 0.0 : rule.nodes[k], planar ? rule.weights[j] : rule.weights[j] * rule.weights[k]);
+      }
+    }
+    return scaled(out, planar ? h : h * h);
+  }
   const double spread = h * rule.nodes.back() * (planar ? 1.0 : std::sqrt(2.0));
   prefetchNeighbourhoods(Index, Params, origin, spread, ws);
   // Node index ranges: the two halves of the u axis, and of the v axis in 3D (the line has one
@@ -172,13 +202,7 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
       }
     }
   }
-  const double jacobian = planar ? h : h * h;
-  out.value *= jacobian;
-  out.slope *= jacobian;
-  out.tilt *= jacobian;
-  out.curvature *= jacobian;
-  out.tiltHessian *= jacobian;
-  return out;
+  return scaled(out, planar ? h : h * h);
 }
 
 double IntegralEnergy::value(const Vec3& y, const Vec3& a, Workspace& ws) const

@@ -65,6 +65,11 @@ void SurfaceParameters::validate() const
   {
     throw std::invalid_argument("the minimum stability must be in [0, 1), got " + std::to_string(minStability));
   }
+  if (!(deltaLattice == 0.0 || (deltaLattice >= 0.05 && deltaLattice <= 1.0)))
+  {
+    throw std::invalid_argument(
+      "the delta lattice spacing must be 0 (exact) or in [0.05, 1] h, got " + std::to_string(deltaLattice));
+  }
 }
 
 void Neighbourhood::resize(Eigen::Index n)
@@ -921,6 +926,35 @@ DeltaJet approximateSqDistanceJet(const Neighbourhood& nb, const Vec3& a)
   return out;
 }
 
+DeltaHessian approximateSqDistanceHessian(const Neighbourhood& nb)
+{
+  const auto w = nb.w();
+  const double weightSum = nb.weightSum;
+  DeltaHessian out;
+  out.value = (w * nb.d2()).sum() / weightSum;
+  const auto spread = w * (nb.d2() - out.value);
+  const Vec3 m = Vec3((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum()) / weightSum;
+  const Vec3 t = Vec3((spread * nb.x()).sum(), (spread * nb.y()).sum(), (spread * nb.z()).sum()) / weightSum;
+  const double k = nb.invH2;
+  out.gradient = -2.0 * m + 2.0 * k * t;
+  // Second moments about y, weighted by w and by the spread, one entry of the upper triangle at a time.
+  Mat3 second, spreadSecond;
+  const std::array<decltype(nb.x()), 3> r{ nb.x(), nb.y(), nb.z() };
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = i; j < 3; ++j)
+    {
+      const auto rr = r[i] * r[j];
+      second(i, j) = second(j, i) = (w * rr).sum() / weightSum;
+      spreadSecond(i, j) = spreadSecond(j, i) = (spread * rr).sum() / weightSum;
+    }
+  }
+  const Mat3 covariance = second - m * m.transpose();
+  out.hessian = 2.0 * Mat3::Identity() - 8.0 * k * covariance +
+    4.0 * k * k * (spreadSecond - t * m.transpose() - m * t.transpose());
+  return out;
+}
+
 DistanceField::DistanceField(const PointIndex& index, const SurfaceParameters& params)
   : Index(index)
   , Params(params)
@@ -948,6 +982,13 @@ DeltaJet DistanceField::jet(const Vec3& y, const Vec3& a, Workspace& ws, double*
     *nearestSqDist = nb.minSqDist;
   }
   return approximateSqDistanceJet(nb, a);
+}
+
+DeltaHessian DistanceField::hessian(const Vec3& y, Workspace& ws) const
+{
+  Neighbourhood& nb = ws.field;
+  gatherNeighbourhood(Index, Params, y, nb, ws);
+  return approximateSqDistanceHessian(nb);
 }
 
 } // namespace pss

@@ -41,6 +41,9 @@ struct SurfaceParameters
   int quadratureOrder = 6;    ///< Gauss-Hermite nodes per in-plane axis for e_I (1..32)
   int integrandPower = 2;     ///< e_I integrates delta^power; the paper uses 2 (appendix: 1 is blind)
   double minStability = 1e-5; ///< n(x) counts as undefined below this stability (see README)
+  /// Spacing, in units of h, of the lattice from which e_I's quadrature reads delta (DeltaLattice.h);
+  /// 0 evaluates delta exactly at every node (the reference). Otherwise within [0.05, 1].
+  double deltaLattice = 0.0;
 
   /// Throws std::invalid_argument with a readable message when a value is out of range.
   void validate() const;
@@ -196,6 +199,15 @@ struct DeltaJet
  */
 DeltaJet approximateSqDistanceJet(const Neighbourhood& nb, const Vec3& a);
 
+/// delta, its gradient and its whole Hessian (the formula above), from one neighbourhood.
+struct DeltaHessian
+{
+  double value = 0.0;
+  Vec3 gradient = Vec3::Zero();
+  Mat3 hessian = Mat3::Zero();
+};
+DeltaHessian approximateSqDistanceHessian(const Neighbourhood& nb);
+
 /// delta(y) and its gradient evaluated straight from the index, in Workspace::field.
 class DistanceField
 {
@@ -205,6 +217,11 @@ public:
   /// delta, its gradient and its curvature along @p a (see approximateSqDistanceJet); optionally
   /// the squared distance from y to the nearest cloud point.
   DeltaJet jet(const Vec3& y, const Vec3& a, Workspace& ws, double* nearestSqDist = nullptr) const;
+  /// delta, its gradient and its Hessian at y (a lattice node's data, DeltaLattice.h).
+  DeltaHessian hessian(const Vec3& y, Workspace& ws) const;
+
+  const PointIndex& index() const { return Index; }
+  const SurfaceParameters& parameters() const { return Params; }
 
 private:
   const PointIndex& Index;

@@ -7,6 +7,7 @@
  */
 #pragma once
 
+#include "pss/DeltaLattice.h"
 #include "pss/Kernel.h"
 #include "pss/Quadrature.h"
 #include "pss/SurfaceDefinition.h"
@@ -132,6 +133,7 @@ private:
   GaussHermiteRule Rule;
   GaussHermiteRule RoughRule;
   DistanceField Field;
+  DeltaLattice Lattice; ///< used when Params.deltaLattice > 0
 };
 
 /**

@@ -17,6 +17,7 @@
  */
 #pragma once
 
+#include "pss/DeltaLattice.h"
 #include "pss/Kernel.h"
 #include "pss/PointIndex.h"
 
@@ -81,6 +82,8 @@ struct Workspace
   Eigen::ArrayXd candidateSq;
   Eigen::ArrayXd focusSq;
   PointIndex::LeafRanges leaves;
+  /// The delta lattice's nodes computed so far (SurfaceParameters::deltaLattice > 0).
+  LatticeCache lattice;
 
   /// Not a cache but a report: set (never cleared by the core) when an evaluation needed cloud
   /// points beyond the index's complete region (PointIndex::setCompleteRegion), so that its result

@@ -1,0 +1,257 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "pss/DeltaLattice.h"
+#include "pss/Workspace.h"
+
+#include <cmath>
+
+namespace pss
+{
+
+namespace
+{
+
+/// floor(i / BrickSide) for negative i too.
+std::int64_t brickOf(std::int64_t i)
+{
+  static_assert(LatticeCache::BrickSide == 8, "brickOf shifts by 3");
+  // An arithmetic shift: floor division for negative i too (GCC and Clang; C++20 guarantees it).
+  return i >> 3;
+}
+
+/// The cubic Hermite basis on [0, 1] and its first two derivatives at t: value[corner][order]
+/// multiplies a corner's value, slope[corner][order] its derivative.
+struct HermiteBasis
+{
+  double value[2][3];
+  double slope[2][3];
+
+  explicit HermiteBasis(double t)
+  {
+    const double t2 = t * t;
+    const double t3 = t2 * t;
+    value[0][0] = 1.0 - 3.0 * t2 + 2.0 * t3;
+    value[0][1] = -6.0 * t + 6.0 * t2;
+    value[0][2] = -6.0 + 12.0 * t;
+    value[1][0] = 3.0 * t2 - 2.0 * t3;
+    value[1][1] = 6.0 * t - 6.0 * t2;
+    value[1][2] = 6.0 - 12.0 * t;
+    slope[0][0] = t - 2.0 * t2 + t3;
+    slope[0][1] = 1.0 - 4.0 * t + 3.0 * t2;
+    slope[0][2] = -4.0 + 6.0 * t;
+    slope[1][0] = t3 - t2;
+    slope[1][1] = 3.0 * t2 - 2.0 * t;
+    slope[1][2] = 6.0 * t - 2.0;
+  }
+};
+
+} // namespace
+
+std::size_t LatticeCache::BrickHash::operator()(const BrickKey& key) const
+{
+  // Large odd multipliers spread neighbouring bricks over the buckets.
+  const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
+  std::uint64_t x = u(key.i) * 0x9E3779B97F4A7C15ull ^ u(key.j) * 0xC2B2AE3D27D4EB4Full ^ u(key.k) * 0x165667B19E3779F9ull;
+  x ^= x >> 29;
+  return static_cast<std::size_t>(x);
+}
+
+void LatticeCache::clear()
+{
+  bricks.clear();
+  storage.clear();
+  hasLast = false;
+}
+
+DeltaLattice::DeltaLattice(const DistanceField& field)
+  : Field(field)
+  , Spacing(field.parameters().deltaLattice * field.parameters().h)
+  , Planar(field.index().dimension() == 2)
+{
+}
+
+LatticeCache::Brick& DeltaLattice::brickAt(const LatticeCache::BrickKey& key, Workspace& ws) const
+{
+  LatticeCache& cache = ws.lattice;
+  if (!cache.hasLast || !(cache.lastKey == key))
+  {
+    const auto found = cache.bricks.find(key);
+    std::uint32_t b = 0;
+    if (found != cache.bricks.end())
+    {
+      b = found->second;
+    }
+    else
+    {
+      if (cache.storage.size() >= LatticeCache::MaxBricks)
+      {
+        cache.clear();
+      }
+      b = static_cast<std::uint32_t>(cache.storage.size());
+      cache.storage.emplace_back();
+      cache.storage.back().state.fill(0);
+      cache.bricks.emplace(key, b);
+    }
+    cache.lastKey = key;
+    cache.lastBrick = b;
+    cache.hasLast = true;
+  }
+  return cache.storage[cache.lastBrick];
+}
+
+const double* DeltaLattice::nodeIn(LatticeCache::Brick& brick, const LatticeCache::BrickKey& key, std::int64_t i,
+  std::int64_t j, std::int64_t k, Workspace& ws) const
+{
+  constexpr int side = LatticeCache::BrickSide;
+  const int li = static_cast<int>(i - key.i * side);
+  const int lj = static_cast<int>(j - key.j * side);
+  const int lk = static_cast<int>(k - key.k * side);
+  const int local = (li * side + lj) * side + lk;
+  double* data = brick.data.data() + local * LatticeCache::NodeData;
+  if (brick.state[local] == 0)
+  {
+    // The node's own reach decides its flag, whatever the caller's evaluation had noted so far.
+    const bool before = ws.leftCompleteRegion;
+    ws.leftCompleteRegion = false;
+    // One candidate set for each block of 4 x 4 x 4 nodes, as e_I's quarters have for their nodes.
+    constexpr int block = 4;
+    const double blockSpan = block * Spacing;
+    const Vec3 blockCentre = (Vec3(static_cast<double>(i - li % block), static_cast<double>(j - lj % block),
+                                static_cast<double>(k - lk % block)) + Vec3::Constant(0.5 * block)) * Spacing;
+    focusNeighbourhoods(Field.index(), Field.parameters(),
+      Planar ? Vec3(blockCentre.x(), blockCentre.y(), 0.0) : blockCentre,
+      (Planar ? std::sqrt(0.5) : std::sqrt(0.75)) * blockSpan, ws);
+    const DeltaHessian d = Field.hessian(Vec3(i * Spacing, j * Spacing, k * Spacing), ws);
+    brick.state[local] = ws.leftCompleteRegion ? 2 : 1;
+    ws.leftCompleteRegion = before;
+    const double s2 = Spacing * Spacing;
+    data[0] = d.value;
+    data[1] = d.gradient.x() * Spacing;
+    data[2] = d.gradient.y() * Spacing;
+    data[3] = d.gradient.z() * Spacing;
+    data[4] = d.hessian(0, 1) * s2;
+    data[5] = d.hessian(0, 2) * s2;
+    data[6] = d.hessian(1, 2) * s2;
+  }
+  if (brick.state[local] == 2)
+  {
+    ws.leftCompleteRegion = true;
+  }
+  return data;
+}
+
+template <bool WithDerivatives>
+void DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3* gradient, Mat3* hessian) const
+{
+  LatticeCache& cache = ws.lattice;
+  const SurfaceParameters& params = Field.parameters();
+  const std::uint64_t serial = Field.index().serial();
+  if (cache.indexSerial != serial || cache.h != params.h || cache.cutoff != params.cutoff || cache.spacing != Spacing)
+  {
+    cache.clear();
+    cache.indexSerial = serial;
+    cache.h = params.h;
+    cache.cutoff = params.cutoff;
+    cache.spacing = Spacing;
+  }
+  const Vec3 u = y / Spacing;
+  const std::int64_t ci = static_cast<std::int64_t>(std::floor(u.x()));
+  const std::int64_t cj = static_cast<std::int64_t>(std::floor(u.y()));
+  const std::int64_t ck = Planar ? 0 : static_cast<std::int64_t>(std::floor(u.z()));
+  const HermiteBasis bx(u.x() - static_cast<double>(ci));
+  const HermiteBasis by(u.y() - static_cast<double>(cj));
+  const HermiteBasis bz(Planar ? 0.0 : u.z() - static_cast<double>(ck));
+  // In the plane only the z = 0 layer counts, and with its value basis alone.
+  constexpr double planarValue[3] = { 1.0, 0.0, 0.0 };
+  constexpr double planarSlope[3] = { 0.0, 0.0, 0.0 };
+  // Sums in cell coordinates: value, gradient, Hessian (xx, yy, zz, xy, xz, yz).
+  double f = 0.0;
+  double g[3] = { 0.0, 0.0, 0.0 };
+  double hxx = 0.0, hyy = 0.0, hzz = 0.0, hxy = 0.0, hxz = 0.0, hyz = 0.0;
+  constexpr int orders = WithDerivatives ? 3 : 1;
+  const int zCorners = Planar ? 1 : 2;
+  const LatticeCache::BrickKey key{ brickOf(ci), brickOf(cj), brickOf(ck) };
+  constexpr int last = LatticeCache::BrickSide - 1;
+  const bool inside = ci - key.i * LatticeCache::BrickSide < last && cj - key.j * LatticeCache::BrickSide < last &&
+    (Planar || ck - key.k * LatticeCache::BrickSide < last);
+  LatticeCache::Brick* brick = inside ? &brickAt(key, ws) : nullptr;
+  for (int cz = 0; cz < zCorners; ++cz)
+  {
+    const double* vz = Planar ? planarValue : bz.value[cz];
+    const double* dz = Planar ? planarSlope : bz.slope[cz];
+    for (int cy = 0; cy < 2; ++cy)
+    {
+      const double* vy = by.value[cy];
+      const double* dy = by.slope[cy];
+      for (int cx = 0; cx < 2; ++cx)
+      {
+        const double* vx = bx.value[cx];
+        const double* dx = bx.slope[cx];
+        // Node data: delta, its x, y, z derivatives, its xy, xz, yz derivatives (cell units).
+        const std::int64_t i = ci + cx, j = cj + cy, k = ck + cz;
+        // A cell inside one brick looks the brick up once; one on a brick's far faces, per corner.
+        const double* q = inside ? nodeIn(*brick, key, i, j, k, ws)
+                                 : [&] {
+                                     const LatticeCache::BrickKey own{ brickOf(i), brickOf(j), brickOf(k) };
+                                     return nodeIn(brickAt(own, ws), own, i, j, k, ws);
+                                   }();
+        // The seven products of a node's data with the x, y, z bases, summed in the order x, y, z:
+        // for each derivative order a along x, the data that take the y value basis (A, with z's
+        // value basis; C, with z's slope) or the y slope basis (B; D).
+        double A[orders], B[orders], C[orders], D[orders];
+        for (int a = 0; a < orders; ++a)
+        {
+          A[a] = q[0] * vx[a] + q[1] * dx[a];
+          B[a] = q[2] * vx[a] + q[4] * dx[a];
+          C[a] = q[3] * vx[a] + q[5] * dx[a];
+          D[a] = q[6] * vx[a];
+        }
+        // Orders (a along x, b along y) -> the parts with z's value basis (P) and slope basis (Q).
+        auto P = [&](int a, int b) { return vy[b] * A[a] + dy[b] * B[a]; };
+        auto Q = [&](int a, int b) { return vy[b] * C[a] + dy[b] * D[a]; };
+        auto term = [&](int a, int b, int c) { return vz[c] * P(a, b) + dz[c] * Q(a, b); };
+        f += term(0, 0, 0);
+        if constexpr (WithDerivatives)
+        {
+          const double p00 = P(0, 0), q00 = Q(0, 0), p10 = P(1, 0), q10 = Q(1, 0), p01 = P(0, 1), q01 = Q(0, 1);
+          g[0] += vz[0] * p10 + dz[0] * q10;
+          g[1] += vz[0] * p01 + dz[0] * q01;
+          g[2] += vz[1] * p00 + dz[1] * q00;
+          hxx += term(2, 0, 0);
+          hyy += term(0, 2, 0);
+          hzz += vz[2] * p00 + dz[2] * q00;
+          hxy += term(1, 1, 0);
+          hxz += vz[1] * p10 + dz[1] * q10;
+          hyz += vz[1] * p01 + dz[1] * q01;
+        }
+      }
+    }
+  }
+  value = f;
+  if constexpr (WithDerivatives)
+  {
+    const double inv = 1.0 / Spacing;
+    const double inv2 = inv * inv;
+    *gradient = Vec3(g[0], g[1], g[2]) * inv;
+    Mat3& H = *hessian;
+    H << hxx, hxy, hxz, hxy, hyy, hyz, hxz, hyz, hzz;
+    H *= inv2;
+  }
+}
+
+double DeltaLattice::value(const Vec3& y, Workspace& ws) const
+{
+  double f = 0.0;
+  interpolate<false>(y, ws, f, nullptr, nullptr);
+  return f;
+}
+
+DeltaJet DeltaLattice::jet(const Vec3& y, const Vec3& a, Workspace& ws) const
+{
+  DeltaJet out;
+  Mat3 H;
+  interpolate<true>(y, ws, out.value, &out.gradient, &H);
+  out.curvature = a.dot(H * a);
+  return out;
+}
+
+} // namespace pss

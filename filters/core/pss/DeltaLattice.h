@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file DeltaLattice.h
+ * @brief delta read from a lattice instead of evaluated at every quadrature node of e_I: the fast
+ *        path of the integral and delta definitions (issue 15, SurfaceParameters::deltaLattice).
+ *
+ * One e_I is 36 quadrature nodes, each a full neighbourhood of some 200 points; a projection
+ * takes some 45 e_I, and neighbouring projections put their nodes in the same region of space.
+ * The lattice evaluates delta exactly, with its gradient and Hessian, at the nodes of a regular
+ * grid of spacing s (a fraction of h), and interpolates between them with the tricubic Hermite
+ * polynomial of those data (values, first derivatives and the three mixed second derivatives at
+ * the 8 corners of a cell; the third mixed derivative is taken as 0). The interpolant is C1 across
+ * cell faces, so e_I's slope and tilt stay continuous and Newton's steps well defined.
+ *
+ * Determinism: a node's data are a function of its integer coordinates only (the exact delta there,
+ * whose neighbourhood is canonical), so what a workspace holds changes the time, never a bit of a
+ * result, whatever the threads or the order of the work. Nodes are computed when a cell first needs
+ * them and kept in bricks of 8 x 8 x 8 nodes in the workspace (LatticeCache), which is cleared
+ * when it passes its capacity. A node computed from cloud points beyond the index's complete region
+ * keeps that flag, and every read of it sets Workspace::leftCompleteRegion, as the exact
+ * evaluation would.
+ *
+ * In 2D (a cloud in the xy-plane) the lattice is the plane's: nodes at z = 0, bicubic Hermite.
+ */
+#pragma once
+
+#include "pss/Kernel.h"
+#include "pss/Types.h"
+
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace pss
+{
+
+struct Workspace;
+
+/// The nodes a workspace has computed, for one index, h, cutoff and spacing. Its members are
+/// DeltaLattice's business.
+struct LatticeCache
+{
+  static constexpr int BrickSide = 8;
+  static constexpr int BrickNodes = BrickSide * BrickSide * BrickSide;
+  /// Per node: delta, s * grad delta (3), s^2 * the mixed second derivatives xy, xz, yz.
+  static constexpr int NodeData = 7;
+  /// About 58 MB of bricks (28 KB each) per workspace before it starts again empty.
+  static constexpr std::size_t MaxBricks = 2048;
+
+  struct BrickKey
+  {
+    std::int64_t i = 0, j = 0, k = 0;
+    bool operator==(const BrickKey& o) const { return i == o.i && j == o.j && k == o.k; }
+  };
+  struct BrickHash
+  {
+    std::size_t operator()(const BrickKey& key) const;
+  };
+  struct Brick
+  {
+    std::array<double, BrickNodes * NodeData> data;
+    /// 0: not computed yet; 1: computed; 2: computed from points beyond the complete region.
+    std::array<std::uint8_t, BrickNodes> state;
+  };
+
+  std::uint64_t indexSerial = 0; ///< 0: empty
+  double h = 0.0;
+  double cutoff = 0.0;
+  double spacing = 0.0;
+  std::unordered_map<BrickKey, std::uint32_t, BrickHash> bricks;
+  std::vector<Brick> storage;
+  /// The brick of the last lookup, which most lookups of a cell's corners hit again.
+  BrickKey lastKey;
+  std::uint32_t lastBrick = 0;
+  bool hasLast = false;
+
+  void clear();
+};
+
+/**
+ * delta and its derivatives interpolated from a lattice of spacing params.deltaLattice * h; the
+ * node data come from @p field, the cache from Workspace::lattice.
+ */
+class DeltaLattice
+{
+public:
+  explicit DeltaLattice(const DistanceField& field);
+
+  /// The interpolated delta at y.
+  double value(const Vec3& y, Workspace& ws) const;
+  /// The interpolated delta, its gradient, and its second derivative along the unit @p a.
+  DeltaJet jet(const Vec3& y, const Vec3& a, Workspace& ws) const;
+
+private:
+  template <bool WithDerivatives>
+  void interpolate(const Vec3& y, Workspace& ws, double& value, Vec3* gradient, Mat3* hessian) const;
+  /// The brick of @p key, added (empty) when the cache lacks it.
+  LatticeCache::Brick& brickAt(const LatticeCache::BrickKey& key, Workspace& ws) const;
+  /// The data of node (i, j, k) of @p brick (whose key is @p key), computed when missing.
+  const double* nodeIn(LatticeCache::Brick& brick, const LatticeCache::BrickKey& key, std::int64_t i, std::int64_t j,
+    std::int64_t k, Workspace& ws) const;
+
+  const DistanceField& Field;
+  double Spacing; ///< in the cloud's units
+  bool Planar;
+};
+
+} // namespace pss
