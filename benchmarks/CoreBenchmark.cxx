@@ -147,21 +147,75 @@ double NeighbourCount(
   return static_cast<double>(ws.local.size());
 }
 
+// Which starts a projection row takes from the cloud.
+struct StartSet
+{
+  std::size_t count = 0;  ///< at most this many (all: the cloud itself, no copy)
+  bool patch = false;     ///< false: evenly spread over the cloud; true: the points nearest to one point
+  std::size_t centre = 0; ///< the patch's centre (a cloud index)
+};
+
+// The count cloud points nearest to cloud[centre]: a dense patch, as a whole-cloud projection
+// visits its neighbourhoods.
+std::vector<pss::Vec3> Patch(const std::vector<pss::Vec3>& cloud, std::size_t centre, std::size_t count)
+{
+  std::vector<std::pair<double, std::size_t>> byDistance(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+  {
+    byDistance[i] = { (cloud[i] - cloud[centre]).squaredNorm(), i };
+  }
+  count = std::min(count, cloud.size());
+  std::nth_element(byDistance.begin(), byDistance.begin() + static_cast<std::ptrdiff_t>(count - 1), byDistance.end());
+  std::vector<pss::Vec3> out;
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    out.push_back(cloud[byDistance[k].second]);
+  }
+  return out;
+}
+
+// With the delta lattice: the end points' deviation from the exact path's, printed below the row.
+void PrintDeviationFromExact(const pss::PointIndex& index, pss::SurfaceParameters params, pss::Variant variant,
+  const pss::ProjectionOptions& options, int threads, const std::vector<pss::Vec3>& starts,
+  const std::vector<pss::ProjectionResult>& fast)
+{
+  params.deltaLattice = 0.0;
+  const auto exactSurface = pss::makeSurface(variant, index, params);
+  const std::vector<pss::ProjectionResult> exact = pss::projectAll(*exactSurface, starts, options, threads);
+  std::vector<double> apart;
+  std::size_t reasonOrType = 0;
+  for (std::size_t i = 0; i < starts.size(); ++i)
+  {
+    apart.push_back((exact[i].point - fast[i].point).norm() / params.h);
+    reasonOrType += exact[i].reason != fast[i].reason || exact[i].type != fast[i].type ? 1 : 0;
+  }
+  std::sort(apart.begin(), apart.end());
+  std::printf("  (the next row against the exact path: end points apart median %.1e h, p99 %.1e h, max %.1e h; StopReason or ExtremumType differ at %.2f%%)\n",
+    apart[apart.size() / 2], apart[apart.size() * 99 / 100], apart.back(), 100.0 * reasonOrType / starts.size());
+  std::fflush(stdout); // the row runs in a child process that leaves by _exit
+}
+
 RowResult ProjectRow(const std::vector<pss::Vec3>& cloud, int dimension, double h, pss::Variant variant,
-  pss::Procedure procedure, int threads, std::size_t maxStarts, const std::function<double(const std::vector<pss::Vec3>&)>& accuracy)
+  pss::Procedure procedure, int threads, const StartSet& startSet,
+  const std::function<double(const std::vector<pss::Vec3>&)>& accuracy, double deltaLattice = 0.0)
 {
   const pss::PointIndex index(cloud, dimension);
   pss::SurfaceParameters params;
   params.h = h;
+  params.deltaLattice = deltaLattice;
   const auto surface = pss::makeSurface(variant, index, params);
   pss::ProjectionOptions options;
   options.procedure = procedure;
   options.maxIterations = 10;
   options.tolerance = 1e-6;
-  // Every point of the cloud, or an evenly spread subset (no copy when it is all of them).
-  const std::size_t n = std::min(maxStarts, cloud.size());
+  // Every point of the cloud, an evenly spread subset (no copy when it is all of them), or a patch.
+  const std::size_t n = std::min(startSet.count, cloud.size());
   std::vector<pss::Vec3> subset;
-  if (n < cloud.size())
+  if (startSet.patch)
+  {
+    subset = Patch(cloud, startSet.centre, n);
+  }
+  else if (n < cloud.size())
   {
     subset.reserve(n);
     for (std::size_t i = 0; i < n; ++i)
@@ -169,15 +223,21 @@ RowResult ProjectRow(const std::vector<pss::Vec3>& cloud, int dimension, double 
       subset.push_back(cloud[i * cloud.size() / n]);
     }
   }
-  const std::vector<pss::Vec3>& starts = n < cloud.size() ? subset : cloud;
+  const std::vector<pss::Vec3>& starts = startSet.patch || n < cloud.size() ? subset : cloud;
   // Keep what a caller keeps of a projection, the end point and the iteration count, not the
   // whole ProjectionResult (projectEach hands each one over as it is made).
   std::vector<pss::Vec3> ends(n);
   std::vector<std::uint8_t> iterationCounts(n);
   const auto t0 = std::chrono::steady_clock::now();
+  // With the lattice every result is kept (after the timing) for the comparison with the exact path.
+  std::vector<pss::ProjectionResult> kept(deltaLattice > 0.0 ? n : 0);
   pss::projectEach(*surface, starts, options, threads, [&](std::size_t i, const pss::ProjectionResult& r) {
     ends[i] = r.point;
     iterationCounts[i] = static_cast<std::uint8_t>(r.iterations);
+    if (!kept.empty())
+    {
+      kept[i] = r;
+    }
   });
   const double seconds = Seconds(t0);
 
@@ -203,6 +263,10 @@ RowResult ProjectRow(const std::vector<pss::Vec3>& cloud, int dimension, double 
   if (accuracy)
   {
     row.medianDistance = accuracy(ends);
+  }
+  if (!kept.empty())
+  {
+    PrintDeviationFromExact(index, params, variant, options, threads, starts, kept);
   }
   return row;
 }
@@ -474,10 +538,51 @@ int main(int argc, char** argv)
         {
           continue;
         }
-        const std::size_t starts = slow ? (quick ? 20 : 200) : (quick ? 20000 : bunny.size());
+        StartSet starts;
+        starts.count = slow ? (quick ? 20 : 200) : (quick ? 20000 : bunny.size());
         RunRow(name.c_str(), [&]() {
           return ProjectRow(bunny, 3, 0.001, variant, procedure, threads, starts, slow || quick ? nullptr : accuracy);
         });
+      }
+    }
+  }
+
+  // The integral and delta definitions on a dense patch (the 4,000 points nearest to point
+  // 100,000, on the bunny's flank), as a whole-cloud projection or a mesh visits them: exact, and
+  // from the delta lattice at its default spacing (issue 15), the lattice rows followed by their
+  // deviation from the exact path. Also on the 200 spread starts, where each projection builds its
+  // own lattice nodes.
+  for (pss::Variant variant : { pss::Variant::Integral, pss::Variant::Delta })
+  {
+    for (pss::Procedure procedure : procedures)
+    {
+      for (const char* set : { "patch", "spread" })
+      {
+        const bool patch = std::string(set) == "patch";
+        for (double lattice : { 0.0, 0.5 })
+        {
+          for (int threads : { 1, 2 })
+          {
+            if (bunny.empty() || quick || (!patch && lattice == 0.0))
+            {
+              continue; // the spread starts' exact rows are the table's rows above
+            }
+            const std::string name = std::string("bunny ") + pss::variantName(variant) +
+              (procedure == pss::Procedure::Plane ? " plane " : " extremal ") + set +
+              (lattice > 0.0 ? " lattice" : " exact") + " t" + std::to_string(threads);
+            if (!wanted(name))
+            {
+              continue;
+            }
+            StartSet starts;
+            starts.count = patch ? 4000 : 200;
+            starts.patch = patch;
+            starts.centre = 100000;
+            RunRow(name.c_str(), [&]() {
+              return ProjectRow(bunny, 3, 0.001, variant, procedure, threads, starts, patch ? accuracy : nullptr, lattice);
+            });
+          }
+        }
       }
     }
   }
@@ -504,7 +609,9 @@ int main(int argc, char** argv)
         const double spacing = std::sqrt(M_PI * spec.size * spec.size / static_cast<double>(n));
         spec.noise = 0.3 * spacing;
         const auto cloud = pss::generateCloud(spec);
-        return ProjectRow(cloud, 3, 2.0 * spacing, pss::Variant::CenterOfMass, pss::Procedure::Plane, threads, n, nullptr);
+        StartSet starts;
+        starts.count = n;
+        return ProjectRow(cloud, 3, 2.0 * spacing, pss::Variant::CenterOfMass, pss::Procedure::Plane, threads, starts, nullptr);
       });
     }
   }
