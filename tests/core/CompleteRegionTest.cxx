@@ -54,7 +54,15 @@ TEST(CompleteRegion, HoldsBallOnlyInsideTheClosedSides)
   EXPECT_FALSE(index.holdsBall(Vec3(0.0, 0.0, 0.0), std::nan("")));
 }
 
-TEST(CompleteRegion, PieceWithGhostsGivesTheWholeCloudsProjectionsBitwiseOrSaysItCannot)
+namespace
+{
+
+// Projects starts on one side of a piece (with its ghosts) and of the whole cloud: every start the
+// piece does not flag must end bitwise where the whole cloud's does. With @p deltaLattice > 0
+// the integral and delta definitions read delta from the lattice; with @p oneWorkspace the piece's
+// projections share a workspace (its flag cleared before each), so lattice nodes computed for one
+// start are read by later ones.
+void checkPieceAgainstWhole(const std::vector<Variant>& variants, double deltaLattice, bool oneWorkspace)
 {
   const std::vector<Vec3> cloud = noisySphere();
   const double h = 0.15;
@@ -83,20 +91,25 @@ TEST(CompleteRegion, PieceWithGhostsGivesTheWholeCloudsProjectionsBitwiseOrSaysI
 
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> u(-1.3, 1.3);
-  for (Variant v : allVariants())
+  for (Variant v : variants)
   {
     SCOPED_TRACE(variantName(v));
-    const auto wholeSurface = makeSurface(v, whole, params(h));
-    const auto localSurface = makeSurface(v, local, params(h));
+    SurfaceParameters sp = params(h);
+    sp.deltaLattice = deltaLattice;
+    const auto wholeSurface = makeSurface(v, whole, sp);
+    const auto localSurface = makeSurface(v, local, sp);
     ProjectionOptions options;
     const int starts = v == Variant::Integral || v == Variant::Delta ? 25 : 150;
     int inside = 0;
     int flagged = 0;
+    Workspace shared;
     for (int i = 0; i < starts; ++i)
     {
       const Vec3 start(-std::abs(u(rng)) * 0.9, u(rng), u(rng)); // starts on this rank's side
       Workspace wsWhole;
-      Workspace wsLocal;
+      Workspace fresh;
+      Workspace& wsLocal = oneWorkspace ? shared : fresh;
+      wsLocal.leftCompleteRegion = false;
       const ProjectionResult want = project(*wholeSurface, start, options, wsWhole);
       const ProjectionResult got = project(*localSurface, start, options, wsLocal);
       EXPECT_FALSE(wsWhole.leftCompleteRegion); // the whole cloud's index has no limit
@@ -121,6 +134,21 @@ TEST(CompleteRegion, PieceWithGhostsGivesTheWholeCloudsProjectionsBitwiseOrSaysI
     EXPECT_GT(inside, 0);
     EXPECT_GT(flagged, 0);
   }
+}
+
+} // namespace
+
+TEST(CompleteRegion, PieceWithGhostsGivesTheWholeCloudsProjectionsBitwiseOrSaysItCannot)
+{
+  checkPieceAgainstWhole(std::vector<Variant>(allVariants().begin(), allVariants().end()), 0.0, false);
+}
+
+// The delta lattice keeps a node's flag with its data (DeltaLattice.h): a projection that reads a
+// node another projection computed from beyond the region is flagged too, so what is not flagged
+// is still bitwise the whole cloud's.
+TEST(CompleteRegion, LatticeNodesFromBeyondTheRegionFlagEveryRead)
+{
+  checkPieceAgainstWhole({ Variant::Integral, Variant::Delta }, 0.5, true);
 }
 
 TEST(CompleteRegion, CoordinateOrderRanksByCoordinatesThenIndex)

@@ -160,13 +160,6 @@ void DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
   const HermiteBasis bx(u.x() - static_cast<double>(ci));
   const HermiteBasis by(u.y() - static_cast<double>(cj));
   const HermiteBasis bz(Planar ? 0.0 : u.z() - static_cast<double>(ck));
-  // In the plane only the z = 0 layer counts, and with its value basis alone.
-  constexpr double planarValue[3] = { 1.0, 0.0, 0.0 };
-  constexpr double planarSlope[3] = { 0.0, 0.0, 0.0 };
-  // Sums in cell coordinates: value, gradient, Hessian (xx, yy, zz, xy, xz, yz).
-  double f = 0.0;
-  double g[3] = { 0.0, 0.0, 0.0 };
-  double hxx = 0.0, hyy = 0.0, hzz = 0.0, hxy = 0.0, hxz = 0.0, hyz = 0.0;
   constexpr int orders = WithDerivatives ? 3 : 1;
   const int zCorners = Planar ? 1 : 2;
   const LatticeCache::BrickKey key{ brickOf(ci), brickOf(cj), brickOf(ck) };
@@ -174,19 +167,17 @@ void DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
   const bool inside = ci - key.i * LatticeCache::BrickSide < last && cj - key.j * LatticeCache::BrickSide < last &&
     (Planar || ck - key.k * LatticeCache::BrickSide < last);
   LatticeCache::Brick* brick = inside ? &brickAt(key, ws) : nullptr;
+  // The tensor-product sum contracted one axis at a time. A node's seven data each take the value
+  // (V) or slope (D) basis along x, y and z: delta VVV, d/dx DVV, d/dy VDV, d/dz VVD, d2/dxdy DDV,
+  // d2/dxdz DVD, d2/dydz VDD. Along x, for derivative order a of the x basis, they group by what
+  // they take along y and z: A (V, V), B (D, V), C (V, D), E (D, D).
+  double A[2][2][orders] = {}, B[2][2][orders] = {}, C[2][2][orders] = {}, E[2][2][orders] = {};
   for (int cz = 0; cz < zCorners; ++cz)
   {
-    const double* vz = Planar ? planarValue : bz.value[cz];
-    const double* dz = Planar ? planarSlope : bz.slope[cz];
     for (int cy = 0; cy < 2; ++cy)
     {
-      const double* vy = by.value[cy];
-      const double* dy = by.slope[cy];
       for (int cx = 0; cx < 2; ++cx)
       {
-        const double* vx = bx.value[cx];
-        const double* dx = bx.slope[cx];
-        // Node data: delta, its x, y, z derivatives, its xy, xz, yz derivatives (cell units).
         const std::int64_t i = ci + cx, j = cj + cy, k = ck + cz;
         // A cell inside one brick looks the brick up once; one on a brick's far faces, per corner.
         const double* q = inside ? nodeIn(*brick, key, i, j, k, ws)
@@ -194,46 +185,48 @@ void DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
                                      const LatticeCache::BrickKey own{ brickOf(i), brickOf(j), brickOf(k) };
                                      return nodeIn(brickAt(own, ws), own, i, j, k, ws);
                                    }();
-        // The seven products of a node's data with the x, y, z bases, summed in the order x, y, z:
-        // for each derivative order a along x, the data that take the y value basis (A, with z's
-        // value basis; C, with z's slope) or the y slope basis (B; D).
-        double A[orders], B[orders], C[orders], D[orders];
         for (int a = 0; a < orders; ++a)
         {
-          A[a] = q[0] * vx[a] + q[1] * dx[a];
-          B[a] = q[2] * vx[a] + q[4] * dx[a];
-          C[a] = q[3] * vx[a] + q[5] * dx[a];
-          D[a] = q[6] * vx[a];
-        }
-        // Orders (a along x, b along y) -> the parts with z's value basis (P) and slope basis (Q).
-        auto P = [&](int a, int b) { return vy[b] * A[a] + dy[b] * B[a]; };
-        auto Q = [&](int a, int b) { return vy[b] * C[a] + dy[b] * D[a]; };
-        auto term = [&](int a, int b, int c) { return vz[c] * P(a, b) + dz[c] * Q(a, b); };
-        f += term(0, 0, 0);
-        if constexpr (WithDerivatives)
-        {
-          const double p00 = P(0, 0), q00 = Q(0, 0), p10 = P(1, 0), q10 = Q(1, 0), p01 = P(0, 1), q01 = Q(0, 1);
-          g[0] += vz[0] * p10 + dz[0] * q10;
-          g[1] += vz[0] * p01 + dz[0] * q01;
-          g[2] += vz[1] * p00 + dz[1] * q00;
-          hxx += term(2, 0, 0);
-          hyy += term(0, 2, 0);
-          hzz += vz[2] * p00 + dz[2] * q00;
-          hxy += term(1, 1, 0);
-          hxz += vz[1] * p10 + dz[1] * q10;
-          hyz += vz[1] * p01 + dz[1] * q01;
+          const double v = bx.value[cx][a];
+          const double d = bx.slope[cx][a];
+          A[cz][cy][a] += q[0] * v + q[1] * d;
+          B[cz][cy][a] += q[2] * v + q[4] * d;
+          C[cz][cy][a] += q[3] * v + q[5] * d;
+          E[cz][cy][a] += q[6] * v;
         }
       }
     }
   }
+  // Along y, for orders (a along x, b along y): the parts that take z's value basis (P) and its
+  // slope basis (Q).
+  auto P = [&](int cz, int a, int b) {
+    return by.value[0][b] * A[cz][0][a] + by.slope[0][b] * B[cz][0][a] + by.value[1][b] * A[cz][1][a] +
+      by.slope[1][b] * B[cz][1][a];
+  };
+  auto Q = [&](int cz, int a, int b) {
+    return by.value[0][b] * C[cz][0][a] + by.slope[0][b] * E[cz][0][a] + by.value[1][b] * C[cz][1][a] +
+      by.slope[1][b] * E[cz][1][a];
+  };
+  // Along z, for order c of the z basis (in the plane only the z = 0 layer, with its value basis).
+  auto term = [&](int a, int b, int c) {
+    if (Planar)
+    {
+      return c == 0 ? P(0, a, b) : 0.0;
+    }
+    return bz.value[0][c] * P(0, a, b) + bz.slope[0][c] * Q(0, a, b) + bz.value[1][c] * P(1, a, b) +
+      bz.slope[1][c] * Q(1, a, b);
+  };
+  const double f = term(0, 0, 0);
   value = f;
   if constexpr (WithDerivatives)
   {
+    // Cell coordinates to the cloud's: one factor 1 / Spacing per derivative.
     const double inv = 1.0 / Spacing;
     const double inv2 = inv * inv;
-    *gradient = Vec3(g[0], g[1], g[2]) * inv;
+    *gradient = Vec3(term(1, 0, 0), term(0, 1, 0), term(0, 0, 1)) * inv;
+    const double hxy = term(1, 1, 0), hxz = term(1, 0, 1), hyz = term(0, 1, 1);
     Mat3& H = *hessian;
-    H << hxx, hxy, hxz, hxy, hyy, hyz, hxz, hyz, hzz;
+    H << term(2, 0, 0), hxy, hxz, hxy, term(0, 2, 0), hyz, hxz, hyz, term(0, 0, 2);
     H *= inv2;
   }
 }
