@@ -415,7 +415,7 @@ void PrintAndWriteTable(const std::vector<Row>& rows)
         << r.stats.converged << ',' << r.stats.onCurve << ',' << Fixed(r.stats.OnCurveFraction(), 4) << ','
         << r.stats.spurious << ',' << (std::isnan(r.flip) ? "" : std::isinf(r.flip) ? "inf" : Fixed(r.flip, 4)) << ','
         << (std::isnan(r.halfWidth) ? "" : (r.halfWidthBounded ? "" : ">=") + Fixed(r.halfWidth, 2)) << ','
-        << Fixed(r.stats.seconds, 2) << '\n';
+        << Fixed(r.stats.seconds, 4) << '\n';
   }
   std::printf("\non curve: converged within %.1f h of the true curve; spurious: converged farther than %.0f h from\n"
               "every input point; flip: height where n first turns from the line's normal to its tangent (or is\n"
