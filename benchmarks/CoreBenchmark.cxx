@@ -10,6 +10,10 @@
  *   10 iterations; every definition x procedure x 1 and 2 threads. The Integral and Delta
  *   definitions, far slower, project an evenly spread subset (the points/s are per point).
  *   The median distance of the projected points to bun_zipper.ply is printed where VTK is built.
+ * - bunny integral/delta ... patch|spread exact|lattice: the Integral and Delta definitions on a
+ *   dense patch (the 4,000 points nearest to point 100,000), exactly and from the delta lattice
+ *   (SurfaceParameters::deltaLattice 0.5), and from the lattice on the 200 spread starts; each
+ *   lattice row is preceded by its end points' deviation from the exact path's.
  * - sphere-N: noisy spheres of 10k, 100k and 1M points (CenterOfMass, plane procedure), to show
  *   how the cost grows with N.
  * - bunny mesh: the bunny's mesh (SurfaceMesh.h) with pss mesh's defaults, the index included;

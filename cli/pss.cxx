@@ -142,7 +142,15 @@ void AddSurfaceOptions(OptionTable& t, vtkPointSetSurface* s)
   t.Value("delta-lattice", "S",
     "integral and delta: spacing in h of the lattice delta is interpolated from (default 0.5; 0: exact at "
     "every quadrature node)",
-    [s](const std::string& v) { s->SetDeltaLatticeSpacing(pss_cli::ToDouble("delta-lattice", v)); });
+    [s](const std::string& v) {
+      const double spacing = pss_cli::ToDouble("delta-lattice", v);
+      if (!(spacing >= 0.0 && spacing <= 1.0))
+      {
+        // vtkPointSetSurface clamps; a command line says what it refuses.
+        throw pss_cli::UsageError{ "--delta-lattice expects 0 or a lattice spacing in [0.05, 1] h, got '" + v + "'" };
+      }
+      s->SetDeltaLatticeSpacing(spacing);
+    });
   t.Value("min-stability", "S", "n counts as undefined below this stability (default 1e-5)",
     [s](const std::string& v) { s->SetMinimumStability(pss_cli::ToDouble("min-stability", v)); });
 }

@@ -25,6 +25,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <utility>
 #include <sys/wait.h>
 #include <vector>
 
@@ -111,6 +112,15 @@ TEST(Cli, BadInputFailsWithMessage)
   EXPECT_NE(r.output.find("h must be"), std::string::npos) << r.output;
   r = RunCommand(Pss() + " project " + cloud + " --h -1 -o " + TempPath("hneg.vtp"));
   EXPECT_EQ(r.exitCode, 1);
+  // A delta lattice finer than h/20 is refused when the surface is prepared (exit 1), one outside
+  // [0, 1] h as a usage error (exit 2), not clamped silently.
+  for (const auto& [spacing, code] : { std::pair<const char*, int>{ "0.01", 1 }, { "2", 2 }, { "-1", 2 } })
+  {
+    r = RunCommand(Pss() + " project " + cloud + " --variant integral --delta-lattice " + spacing + " -o " +
+      TempPath("lattice.vtp"));
+    EXPECT_EQ(r.exitCode, code) << spacing;
+    EXPECT_NE(r.output.find("lattice"), std::string::npos) << spacing << ": " << r.output;
+  }
 
   const std::string malformed = TempPath("malformed.csv");
   std::ofstream(malformed) << "x,y,z\n1,2,3\n4,five,6\n";
