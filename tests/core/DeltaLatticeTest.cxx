@@ -305,13 +305,7 @@ TEST(DeltaLattice, AgreesWithTheExactPathOnThePapersScenes)
   }
   expectAgreement("line h=5", line, 2, 5.0, lineStarts);
 
-  CloudSpec curve;
-  curve.scene = Scene::NoisyCurve;
-  curve.count = 600;
-  curve.size = 200.0;
-  curve.noise = 3.0;
-  curve.dimension = 2;
-  const std::vector<Vec3> noisy = generateCloud(curve);
+  const std::vector<Vec3> noisy = sceneCloud(Scene::NoisyCurve, 2, 600, 200.0, 3.0);
   expectAgreement("noisy curve h=5", noisy, 2, 5.0, noisy);
   expectAgreement("noisy curve h=10", noisy, 2, 10.0, boxStarts(noisy, 2, 10.0, 3.0, 400, 3u));
 
@@ -328,20 +322,6 @@ TEST(DeltaLattice, AgreesWithTheExactPathOnThePapersScenes)
 
 namespace
 {
-
-std::vector<Vec3> halfPlane(double angle, double length, double halfWidth, double spacing)
-{
-  std::vector<Vec3> pts;
-  const double a = angle * kPi / 180.0;
-  for (double s = spacing / 2; s <= length; s += spacing)
-  {
-    for (double y = -halfWidth; y <= halfWidth + 1e-9; y += spacing)
-    {
-      pts.emplace_back(s * std::cos(a), y, s * std::sin(a));
-    }
-  }
-  return pts;
-}
 
 std::vector<Vec3> dihedral(double angle)
 {
@@ -373,32 +353,12 @@ std::vector<Vec3> mixedStarts(const std::vector<Vec3>& cloud, double h, std::siz
 TEST(DeltaLattice, AgreesWithTheExactPathOn3DClouds)
 {
   const double h = 1.0;
-  CloudSpec sphere;
-  sphere.scene = Scene::Sphere;
-  sphere.count = 4000;
-  sphere.size = 16.0;
-  sphere.noise = 0.01;
-  sphere.dimension = 3;
-  const std::vector<Vec3> sphereCloud = generateCloud(sphere);
-  expectAgreement("sphere", sphereCloud, 3, h, mixedStarts(sphereCloud, h, 40, 100, 21u));
-
-  CloudSpec plane;
-  plane.scene = Scene::Plane;
-  plane.count = 2500;
-  plane.size = 10.0;
-  plane.noise = 0.05;
-  plane.dimension = 3;
-  const std::vector<Vec3> planeCloudNoisy = generateCloud(plane);
-  expectAgreement("noisy plane", planeCloudNoisy, 3, h, mixedStarts(planeCloudNoisy, h, 25, 100, 22u));
-
-  CloudSpec sheets;
-  sheets.scene = Scene::TwoSheets;
-  sheets.count = 3000;
-  sheets.size = 8.0;
-  sheets.gap = 1.5;
-  sheets.dimension = 3;
-  const std::vector<Vec3> sheetsCloud = generateCloud(sheets);
-  expectAgreement("two sheets 1.5 h", sheetsCloud, 3, h, mixedStarts(sheetsCloud, h, 30, 100, 23u));
+  const std::vector<Vec3> sphere = sceneCloud(Scene::Sphere, 3, 4000, 16.0, 0.01);
+  expectAgreement("sphere", sphere, 3, h, mixedStarts(sphere, h, 40, 100, 21u));
+  const std::vector<Vec3> plane = sceneCloud(Scene::Plane, 3, 2500, 10.0, 0.05);
+  expectAgreement("noisy plane", plane, 3, h, mixedStarts(plane, h, 25, 100, 22u));
+  const std::vector<Vec3> sheets = sceneCloud(Scene::TwoSheets, 3, 3000, 8.0, 0.0, 1.5);
+  expectAgreement("two sheets 1.5 h", sheets, 3, h, mixedStarts(sheets, h, 30, 100, 23u));
 
   for (double angle : { 90.0, 60.0 })
   {
@@ -413,13 +373,7 @@ TEST(DeltaLattice, AgreesWithTheExactPathOn3DClouds)
 TEST(DeltaLattice, BitwiseOnOneAndTwoThreadsAndAnyWorkspace)
 {
   const double h = 1.0;
-  CloudSpec sphere;
-  sphere.scene = Scene::Sphere;
-  sphere.count = 3000;
-  sphere.size = 14.0;
-  sphere.noise = 0.02;
-  sphere.dimension = 3;
-  const std::vector<Vec3> cloud = generateCloud(sphere);
+  const std::vector<Vec3> cloud = sceneCloud(Scene::Sphere, 3, 3000, 14.0, 0.02);
   const PointIndex index(cloud, 3);
   const std::vector<Vec3> starts = mixedStarts(cloud, h, 15, 50, 31u);
   for (Variant v : { Variant::Integral, Variant::Delta })

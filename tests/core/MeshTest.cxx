@@ -39,22 +39,6 @@ void describe(const pss::SurfaceMesh& mesh)
             << "\n";
 }
 
-// Points on a square lattice of spacing @p spacing over [0, length] x [-halfWidth, halfWidth] of the
-// half-plane through the y axis at @p angle degrees from the +x axis (in the xz-plane).
-std::vector<Vec3> halfPlane(double angle, double length, double halfWidth, double spacing)
-{
-  std::vector<Vec3> pts;
-  const double a = angle * M_PI / 180.0;
-  for (double s = spacing / 2; s <= length; s += spacing)
-  {
-    for (double y = -halfWidth; y <= halfWidth + 1e-9; y += spacing)
-    {
-      pts.emplace_back(s * std::cos(a), y, s * std::sin(a));
-    }
-  }
-  return pts;
-}
-
 // Distance from x to the nearest of @p cloud's points.
 double distanceToCloud(const pss::PointIndex& index, const Vec3& x)
 {
@@ -400,8 +384,8 @@ namespace
 // Two half-planes with a common edge along the y axis, @p angle degrees apart.
 pss::PointIndex dihedralCorner(double angle)
 {
-  std::vector<Vec3> pts = halfPlane(0.0, 8.0, 4.0, 0.4);
-  const std::vector<Vec3> other = halfPlane(angle, 8.0, 4.0, 0.4);
+  std::vector<Vec3> pts = pss_test::halfPlane(0.0, 8.0, 4.0, 0.4);
+  const std::vector<Vec3> other = pss_test::halfPlane(angle, 8.0, 4.0, 0.4);
   pts.insert(pts.end(), other.begin(), other.end());
   return pss::PointIndex(pts, 3);
 }

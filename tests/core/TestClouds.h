@@ -106,6 +106,36 @@ inline std::vector<Vec3> sphereCap(double R, double capAngle, double spacing)
   return pts;
 }
 
+/// Points on a square lattice of spacing @p spacing over [0, length] x [-halfWidth, halfWidth] of the
+/// half-plane through the y axis at @p angle degrees from the +x axis (in the xz-plane).
+inline std::vector<Vec3> halfPlane(double angle, double length, double halfWidth, double spacing)
+{
+  std::vector<Vec3> pts;
+  const double a = angle * kPi / 180.0;
+  for (double s = spacing / 2; s <= length; s += spacing)
+  {
+    for (double y = -halfWidth; y <= halfWidth + 1e-9; y += spacing)
+    {
+      pts.emplace_back(s * std::cos(a), y, s * std::sin(a));
+    }
+  }
+  return pts;
+}
+
+/// A synthetic cloud of SyntheticClouds.h's scenes, with the fields the tests vary.
+inline std::vector<Vec3> sceneCloud(pss::Scene scene, int dimension, std::size_t count, double size, double noise,
+  double gap = 10.0)
+{
+  pss::CloudSpec spec;
+  spec.scene = scene;
+  spec.dimension = dimension;
+  spec.count = count;
+  spec.size = size;
+  spec.noise = noise;
+  spec.gap = gap;
+  return pss::generateCloud(spec);
+}
+
 /// @p n points uniform in [0, size]^dim (z = 0 in 2D), fixed seed.
 inline std::vector<Vec3> randomBox(int n, int dim, double size, unsigned seed)
 {
