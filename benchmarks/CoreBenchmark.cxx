@@ -17,7 +17,8 @@
  * - sphere-N: noisy spheres of 10k, 100k and 1M points (CenterOfMass, plane procedure), to show
  *   how the cost grows with N.
  * - bunny mesh: the bunny's mesh (SurfaceMesh.h) with pss mesh's defaults, the index included;
- *   items are triangles, and a line under the row gives each stage's time and the mesh's counts.
+ *   items are triangles, and a line above the row gives each stage's time and the mesh's counts.
+ *   Center of mass on 1 and 2 threads; the integral definition (delta lattice) on 2 threads.
  * - field-1024: field sampling of a 1024 x 1024 grid around a 5,000-point noisy curve
  *   (CenterOfMass, every array), through vtkPointSetSurfaceFieldSampler (when VTK is built).
  * - pss-Nm: the whole `pss project` process on a noisy sphere of N million points written by
@@ -336,13 +337,14 @@ RowResult FieldRow(int threads)
 
 // The mesh of the bunny with pss mesh's defaults (center of mass, automatic h, cell 1 h, band
 // 2 h): index, then every stage of the mesher, timed together; the stages on a line of their own.
-RowResult MeshRow(const std::vector<pss::Vec3>& cloud, int threads)
+RowResult MeshRow(const std::vector<pss::Vec3>& cloud, int threads, pss::Variant variant)
 {
   const auto t0 = std::chrono::steady_clock::now();
   const pss::PointIndex index(cloud, 3);
   pss::SurfaceParameters params;
   params.h = pss::estimateScale(index);
-  const auto surface = pss::makeSurface(pss::Variant::CenterOfMass, index, params);
+  params.deltaLattice = 0.5; // the filters' and pss mesh's default (used by Integral and Delta only)
+  const auto surface = pss::makeSurface(variant, index, params);
   const double indexSeconds = Seconds(t0);
   pss::MeshTimings t;
   const pss::SurfaceMesh mesh = pss::extractSurfaceMesh(*surface, pss::MeshOptions{}, threads, &t);
@@ -625,8 +627,13 @@ int main(int argc, char** argv)
     const std::string name = "bunny mesh com t" + std::to_string(threads);
     if (!bunny.empty() && !quick && wanted(name))
     {
-      RunRow(name.c_str(), [&]() { return MeshRow(bunny, threads); });
+      RunRow(name.c_str(), [&]() { return MeshRow(bunny, threads, pss::Variant::CenterOfMass); });
     }
+  }
+  // The integral definition's mesh, from the delta lattice: about 155 s, so on 2 threads only.
+  if (!bunny.empty() && !quick && wanted("bunny mesh integral t2"))
+  {
+    RunRow("bunny mesh integral t2", [&]() { return MeshRow(bunny, 2, pss::Variant::Integral); });
   }
 
 #ifdef PSS_BENCH_WITH_VTK
