@@ -218,6 +218,38 @@ TEST(DeltaLattice, InterpolatesDeltaOfAPlaneAndMatchesItAtTheNodes)
   EXPECT_LT(worst, 1e-3);
 }
 
+// Truth: where the lattice's cell indices would overflow (a cloud around 1e20 with h = 1) delta is
+// evaluated exactly, so the lattice returns the exact field's values bit for bit, and a NaN query
+// gives NaN, not undefined behaviour.
+TEST(DeltaLattice, FarCoordinatesFallBackToTheExactField)
+{
+  const Vec3 offset = Vec3::Constant(1e20);
+  std::vector<Vec3> pts = planeCloud(3.0, 0.25);
+  for (Vec3& p : pts)
+  {
+    p += offset;
+  }
+  const PointIndex index(pts, 3);
+  const SurfaceParameters sp = withLattice(1.0, 0.5);
+  const DistanceField field(index, sp);
+  const DeltaLattice lattice(field);
+  Workspace ws, exactWs;
+  for (const Vec3& local : { Vec3(0.1, 0.2, 0.3), Vec3(-1.0, 0.5, 2.0) })
+  {
+    const Vec3 y = offset + local;
+    EXPECT_EQ(lattice.value(y, ws), field.delta(y, exactWs));
+    const DeltaJet a = lattice.jet(y, Vec3::UnitZ(), ws);
+    const DeltaJet b = field.jet(y, Vec3::UnitZ(), exactWs);
+    EXPECT_EQ(a.value, b.value);
+    EXPECT_EQ(a.gradient, b.gradient);
+    EXPECT_EQ(a.curvature, b.curvature);
+  }
+  const PointIndex near(planeCloud(3.0, 0.25), 3);
+  const DistanceField nearField(near, sp);
+  const DeltaLattice nearLattice(nearField);
+  EXPECT_TRUE(std::isnan(nearLattice.value(Vec3(std::nan(""), 0.0, 0.0), ws)));
+}
+
 TEST(DeltaLattice, SpacingIsValidated)
 {
   for (double bad : { 0.01, -0.5, 1.5, std::nan("") })

@@ -136,6 +136,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   params.quadratureOrder = in.ConsumeIntegralInRange<int>(1, 8);
   params.integrandPower = in.ConsumeBool() ? 2 : 1;
   params.minStability = in.ConsumeBool() ? 1e-5 : in.ConsumeFloatingPointInRange<double>(0.0, 0.9);
+  // Both ways of evaluating e_I's delta, without a byte of its own (the corpus keeps its meaning).
+  params.deltaLattice = params.quadratureOrder % 2 == 0 ? 0.5 : 0.0;
   pss::ProjectionOptions options;
   options.procedure = in.ConsumeBool() ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.seekMaxima = in.ConsumeBool();
@@ -267,10 +269,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const bool debug = std::getenv("PSS_FUZZ_DEBUG") != nullptr;
   if (debug)
   {
-    std::fprintf(stderr, "dimension %d variant %s h %.17g cutoff %g order %d power %d minStability %g procedure %s%s "
-                         "maxIterations %d maxTravel %g\n",
+    std::fprintf(stderr, "dimension %d variant %s h %.17g cutoff %g order %d power %d deltaLattice %g minStability %g "
+                         "procedure %s%s maxIterations %d maxTravel %g\n",
       dimension, pss::variantName(variant), h, params.cutoff, params.quadratureOrder, params.integrandPower,
-      params.minStability, options.procedure == pss::Procedure::Plane ? "plane" : "extremal",
+      params.deltaLattice, params.minStability, options.procedure == pss::Procedure::Plane ? "plane" : "extremal",
       options.seekMaxima ? " (maxima)" : "", options.maxIterations, options.maxTravel);
     for (const Vec3& p : cloud)
     {

@@ -231,8 +231,21 @@ void DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
   }
 }
 
+bool DeltaLattice::onLattice(const Vec3& y) const
+{
+  // Cell indices must fit an int64 with room for the cell's fraction: beyond 2^50 cells from the
+  // origin (or at a NaN) the lattice has nothing to offer and delta is evaluated exactly.
+  constexpr double limit = 1125899906842624.0; // 2^50
+  const Vec3 u = y / Spacing;
+  return std::abs(u.x()) < limit && std::abs(u.y()) < limit && std::abs(u.z()) < limit;
+}
+
 double DeltaLattice::value(const Vec3& y, Workspace& ws) const
 {
+  if (!onLattice(y))
+  {
+    return Field.delta(y, ws);
+  }
   double f = 0.0;
   interpolate<false>(y, ws, f, nullptr, nullptr);
   return f;
@@ -240,6 +253,10 @@ double DeltaLattice::value(const Vec3& y, Workspace& ws) const
 
 DeltaJet DeltaLattice::jet(const Vec3& y, const Vec3& a, Workspace& ws) const
 {
+  if (!onLattice(y))
+  {
+    return Field.jet(y, a, ws);
+  }
   DeltaJet out;
   Mat3 H;
   interpolate<true>(y, ws, out.value, &out.gradient, &H);

@@ -21,6 +21,7 @@
  * evaluation would.
  *
  * In 2D (a cloud in the xy-plane) the lattice is the plane's: nodes at z = 0, bicubic Hermite.
+ * Beyond 2^50 cells from the origin (coordinates of 1e15 h and more) delta is evaluated exactly.
  */
 #pragma once
 
@@ -93,6 +94,8 @@ public:
   DeltaJet jet(const Vec3& y, const Vec3& a, Workspace& ws) const;
 
 private:
+  /// False where the lattice's cell indices would overflow (coordinates beyond 2^50 cells, NaN).
+  bool onLattice(const Vec3& y) const;
   template <bool WithDerivatives>
   void interpolate(const Vec3& y, Workspace& ws, double& value, Vec3* gradient, Mat3* hessian) const;
   /// The brick of @p key, added (empty) when the cache lacks it.
