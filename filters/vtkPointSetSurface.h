@@ -139,9 +139,11 @@ public:
    * Spacing, in units of h, of the lattice from which the Integral and Delta definitions read
    * delta at e_I's quadrature nodes: delta, its gradient and Hessian are computed exactly at the
    * lattice's nodes and interpolated (tricubic Hermite) between them (pss/DeltaLattice.h). 0
-   * evaluates delta exactly at every node: the reference, 5 to 15 times slower on a cloud's own
-   * points. Default 0.5 (end points within 1e-3 h of the exact path's for 99% of starts, see the
-   * README). Within [0, 1]; values in (0, 0.05) are refused by Prepare.
+   * evaluates delta exactly at every node: the reference, 4 to 10 times slower on a cloud's own
+   * points (measured on the bunny scans), but about 2 times faster for a few isolated start
+   * points. Default 0.5 (on the bunny scans every end point within 6e-4 h of the exact path's;
+   * README, reading 11, for the synthetic scenes). Within [0, 1]; values in (0, 0.05) are refused
+   * by Prepare.
    */
   vtkSetClampMacro(DeltaLatticeSpacing, double, 0.0, 1.0);
   vtkGetMacro(DeltaLatticeSpacing, double);
