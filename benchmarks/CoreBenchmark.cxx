@@ -179,7 +179,8 @@ std::vector<pss::Vec3> Patch(const std::vector<pss::Vec3>& cloud, std::size_t ce
   return out;
 }
 
-// With the delta lattice: the end points' deviation from the exact path's, printed below the row.
+// With the delta lattice: the end points' deviation from the exact path's, printed (by the row's
+// child process) just above the row's own line.
 void PrintDeviationFromExact(const pss::PointIndex& index, pss::SurfaceParameters params, pss::Variant variant,
   const pss::ProjectionOptions& options, int threads, const std::vector<pss::Vec3>& starts,
   const std::vector<pss::ProjectionResult>& fast)

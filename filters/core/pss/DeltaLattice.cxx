@@ -140,8 +140,16 @@ const double* DeltaLattice::nodeIn(LatticeCache::Brick& brick, const LatticeCach
 }
 
 template <bool WithDerivatives>
-void DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3* gradient, Mat3* hessian) const
+bool DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3* gradient, Mat3* hessian) const
 {
+  // Cell indices must fit an int64 with room for the cell's fraction: beyond 2^50 cells from the
+  // origin (or at a NaN) the lattice has nothing to offer.
+  constexpr double limit = 1125899906842624.0; // 2^50
+  const Vec3 u = y / Spacing;
+  if (!(std::abs(u.x()) < limit && std::abs(u.y()) < limit && std::abs(u.z()) < limit))
+  {
+    return false;
+  }
   LatticeCache& cache = ws.lattice;
   const SurfaceParameters& params = Field.parameters();
   const std::uint64_t serial = Field.index().serial();
@@ -153,7 +161,6 @@ void DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
     cache.cutoff = params.cutoff;
     cache.spacing = Spacing;
   }
-  const Vec3 u = y / Spacing;
   const std::int64_t ci = static_cast<std::int64_t>(std::floor(u.x()));
   const std::int64_t cj = static_cast<std::int64_t>(std::floor(u.y()));
   const std::int64_t ck = Planar ? 0 : static_cast<std::int64_t>(std::floor(u.z()));
@@ -229,37 +236,23 @@ void DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
     H << term(2, 0, 0), hxy, hxz, hxy, term(0, 2, 0), hyz, hxz, hyz, term(0, 0, 2);
     H *= inv2;
   }
-}
-
-bool DeltaLattice::onLattice(const Vec3& y) const
-{
-  // Cell indices must fit an int64 with room for the cell's fraction: beyond 2^50 cells from the
-  // origin (or at a NaN) the lattice has nothing to offer and delta is evaluated exactly.
-  constexpr double limit = 1125899906842624.0; // 2^50
-  const Vec3 u = y / Spacing;
-  return std::abs(u.x()) < limit && std::abs(u.y()) < limit && std::abs(u.z()) < limit;
+  return true;
 }
 
 double DeltaLattice::value(const Vec3& y, Workspace& ws) const
 {
-  if (!onLattice(y))
-  {
-    return Field.delta(y, ws);
-  }
   double f = 0.0;
-  interpolate<false>(y, ws, f, nullptr, nullptr);
-  return f;
+  return interpolate<false>(y, ws, f, nullptr, nullptr) ? f : Field.delta(y, ws);
 }
 
 DeltaJet DeltaLattice::jet(const Vec3& y, const Vec3& a, Workspace& ws) const
 {
-  if (!onLattice(y))
+  DeltaJet out;
+  Mat3 H;
+  if (!interpolate<true>(y, ws, out.value, &out.gradient, &H))
   {
     return Field.jet(y, a, ws);
   }
-  DeltaJet out;
-  Mat3 H;
-  interpolate<true>(y, ws, out.value, &out.gradient, &H);
   out.curvature = a.dot(H * a);
   return out;
 }

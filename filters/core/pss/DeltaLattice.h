@@ -94,10 +94,10 @@ public:
   DeltaJet jet(const Vec3& y, const Vec3& a, Workspace& ws) const;
 
 private:
-  /// False where the lattice's cell indices would overflow (coordinates beyond 2^50 cells, NaN).
-  bool onLattice(const Vec3& y) const;
+  /// The interpolant at y (with its gradient and Hessian when asked); false, with nothing
+  /// computed, where the cell indices would overflow (coordinates beyond 2^50 cells, NaN).
   template <bool WithDerivatives>
-  void interpolate(const Vec3& y, Workspace& ws, double& value, Vec3* gradient, Mat3* hessian) const;
+  bool interpolate(const Vec3& y, Workspace& ws, double& value, Vec3* gradient, Mat3* hessian) const;
   /// The brick of @p key, added (empty) when the cache lacks it.
   LatticeCache::Brick& brickAt(const LatticeCache::BrickKey& key, Workspace& ws) const;
   /// The data of node (i, j, k) of @p brick (whose key is @p key), computed when missing.

@@ -154,32 +154,34 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
     out.curvature += alongA;
     out.tiltHessian += (alongA * h * h) * (w * w.transpose()) - (0.5 * h * weight * dF) * (cross + cross.transpose());
   };
+  const std::size_t n = rule.nodes.size();
+  auto vAt = [&](std::size_t k) { return planar ? 0.0 : rule.nodes[k]; };
+  auto weightAt = [&](std::size_t j, std::size_t k) { return planar ? rule.weights[j] : rule.weights[j] * rule.weights[k]; };
+  const double jacobian = planar ? h : h * h;
+  if (lattice)
+  {
+    // The lattice's nodes gather their own neighbourhoods, a block of nodes at a time
+    // (DeltaLattice::nodeIn).
+    for (std::size_t j = 0; j < n; ++j)
+    {
+      for (std::size_t k = 0; k < (planar ? 1 : n); ++k)
+      {
+        accumulate(rule.nodes[j], vAt(k), weightAt(j, k));
+      }
+    }
+    return scaled(out, jacobian);
+  }
   // Every node lies within h * max|node| (times sqrt(2) in 3D) of x: one candidate fetch serves
   // all. The nodes are then visited by halves of the line, quarters of the plane, each with
   // the part of the fetch its nodes can need (a node's own gather then scans a few hundred
   // candidates instead of some 1,500).
-  if (lattice)
-  {
-    // The lattice's nodes gather their own neighbourhoods, brick by brick (DeltaLattice::node).
-    for (std::size_t j = 0; j < rule.nodes.size(); ++j)
-    {
-      for (std::size_t k = 0; k < (planar ? 1 : rule.nodes.size()); ++k)
-      {
-        accumulate(rule.nodes[j], planar ? 0.0 : rule.nodes[k], planar ? rule.weights[j] : rule.weights[j] * rule.weights[k]);
-      }
-    }
-    return scaled(out, planar ? h : h * h);
-  }
   const double spread = h * rule.nodes.back() * (planar ? 1.0 : std::sqrt(2.0));
   prefetchNeighbourhoods(Index, Params, origin, spread, ws);
   // Node index ranges: the two halves of the u axis, and of the v axis in 3D (the line has one
   // "v" node, at 0). With one node per axis a half is empty.
-  const std::size_t n = rule.nodes.size();
   using Range = std::array<std::size_t, 2>;
   const std::array<Range, 2> halves{ Range{ 0, n / 2 }, Range{ n / 2, n } };
   const std::array<Range, 2> vRanges = planar ? std::array<Range, 2>{ Range{ 0, 1 }, Range{ 1, 1 } } : halves;
-  auto vAt = [&](std::size_t k) { return planar ? 0.0 : rule.nodes[k]; };
-  auto weightAt = [&](std::size_t j, std::size_t k) { return planar ? rule.weights[j] : rule.weights[j] * rule.weights[k]; };
   for (const Range& us : halves)
   {
     for (const Range& vs : vRanges)
@@ -202,7 +204,7 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
       }
     }
   }
-  return scaled(out, planar ? h : h * h);
+  return scaled(out, jacobian);
 }
 
 double IntegralEnergy::value(const Vec3& y, const Vec3& a, Workspace& ws) const

@@ -907,18 +907,47 @@ double approximateSqDistance(const Neighbourhood& nb)
   return (nb.w() * nb.d2()).sum() / nb.weightSum;
 }
 
+namespace
+{
+
+// What delta's jet and Hessian share (approximateSqDistanceJet's formulas): delta, the weighted
+// mean offset m, T = sum theta_N (d_i^2 - delta) r_i, and grad delta.
+struct DeltaFirstOrder
+{
+  double value = 0.0;
+  Vec3 m = Vec3::Zero();
+  Vec3 t = Vec3::Zero();
+  Vec3 gradient = Vec3::Zero();
+};
+
+DeltaFirstOrder deltaFirstOrder(const Neighbourhood& nb)
+{
+  const auto w = nb.w();
+  const double weightSum = nb.weightSum;
+  DeltaFirstOrder out;
+  out.value = (w * nb.d2()).sum() / weightSum;
+  const auto spread = w * (nb.d2() - out.value);
+  out.m = Vec3((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum()) / weightSum;
+  out.t = Vec3((spread * nb.x()).sum(), (spread * nb.y()).sum(), (spread * nb.z()).sum()) / weightSum;
+  out.gradient = -2.0 * out.m + 2.0 * nb.invH2 * out.t;
+  return out;
+}
+
+} // namespace
+
 DeltaJet approximateSqDistanceJet(const Neighbourhood& nb, const Vec3& a)
 {
   const auto w = nb.w();
   const double weightSum = nb.weightSum;
+  const DeltaFirstOrder first = deltaFirstOrder(nb);
   DeltaJet out;
-  out.value = (w * nb.d2()).sum() / weightSum;
+  out.value = first.value;
+  out.gradient = first.gradient;
+  const Vec3& m = first.m;
+  const Vec3& t = first.t;
   const auto spread = w * (nb.d2() - out.value);
   const auto along = a.x() * nb.x() + a.y() * nb.y() + a.z() * nb.z(); // <a, r_i>
-  const Vec3 m = Vec3((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum()) / weightSum;
-  const Vec3 t = Vec3((spread * nb.x()).sum(), (spread * nb.y()).sum(), (spread * nb.z()).sum()) / weightSum;
   const double k = nb.invH2;
-  out.gradient = -2.0 * m + 2.0 * k * t;
   const double am = a.dot(m);
   const double alongCovariance = (w * along.square()).sum() / weightSum - am * am;
   const double alongSpread = (spread * along.square()).sum() / weightSum;
@@ -930,13 +959,14 @@ DeltaHessian approximateSqDistanceHessian(const Neighbourhood& nb)
 {
   const auto w = nb.w();
   const double weightSum = nb.weightSum;
+  const DeltaFirstOrder first = deltaFirstOrder(nb);
   DeltaHessian out;
-  out.value = (w * nb.d2()).sum() / weightSum;
+  out.value = first.value;
+  out.gradient = first.gradient;
+  const Vec3& m = first.m;
+  const Vec3& t = first.t;
   const auto spread = w * (nb.d2() - out.value);
-  const Vec3 m = Vec3((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum()) / weightSum;
-  const Vec3 t = Vec3((spread * nb.x()).sum(), (spread * nb.y()).sum(), (spread * nb.z()).sum()) / weightSum;
   const double k = nb.invH2;
-  out.gradient = -2.0 * m + 2.0 * k * t;
   // Second moments about y, weighted by w and by the spread, one entry of the upper triangle at a time.
   Mat3 second, spreadSecond;
   const std::array<decltype(nb.x()), 3> r{ nb.x(), nb.y(), nb.z() };
