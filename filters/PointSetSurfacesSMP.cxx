@@ -29,22 +29,30 @@ bool ForChunks(vtkAlgorithm* algorithm, vtkIdType n, const pss::ChunkBody& body,
   const int threads = std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads());
   const vtkIdType grain = std::max<vtkIdType>(1, std::min<vtkIdType>(1024, n / (threads * 32)));
   vtkSMPThreadLocal<pss::Workspace> workspaces;
-  vtkSMPTools::For(0, n, grain, [&](vtkIdType begin, vtkIdType end) {
-    if (aborted.load(std::memory_order_relaxed))
+  // One task per thread, each taking its chunks from a ChunkQueue (its own part of the range
+  // first: the range is in spatial order, and a workspace's caches serve nearby points).
+  pss::ChunkQueue queue(static_cast<std::size_t>(n), static_cast<std::size_t>(threads), static_cast<std::size_t>(grain));
+  vtkSMPTools::For(0, threads, 1, [&](vtkIdType firstWorker, vtkIdType lastWorker) {
+    for (vtkIdType worker = firstWorker; worker < lastWorker; ++worker)
     {
-      return;
-    }
-    body(static_cast<std::size_t>(begin), static_cast<std::size_t>(end), workspaces.Local());
-    const vtkIdType total = done.fetch_add(end - begin) + (end - begin);
-    // When the whole range fits one chunk, vtkSMPTools::For runs it inline, outside any parallel
-    // scope, where GetSingleThread() must not be asked (it crashes with VTK 9.2's STDThread).
-    const bool reporter = !vtkSMPTools::IsParallelScope() || vtkSMPTools::GetSingleThread();
-    if (algorithm && reporter)
-    {
-      algorithm->UpdateProgress(progressBegin + (progressEnd - progressBegin) * double(total) / double(n));
-      if (algorithm->GetAbortExecute())
+      std::size_t begin = 0;
+      std::size_t end = 0;
+      while (!aborted.load(std::memory_order_relaxed) && queue.take(static_cast<std::size_t>(worker), begin, end))
       {
-        aborted = true;
+        body(begin, end, workspaces.Local());
+        const vtkIdType total = done.fetch_add(static_cast<vtkIdType>(end - begin)) + static_cast<vtkIdType>(end - begin);
+        // When the whole range fits one chunk, vtkSMPTools::For runs it inline, outside any
+        // parallel scope, where GetSingleThread() must not be asked (it crashes with VTK 9.2's
+        // STDThread).
+        const bool reporter = !vtkSMPTools::IsParallelScope() || vtkSMPTools::GetSingleThread();
+        if (algorithm && reporter)
+        {
+          algorithm->UpdateProgress(progressBegin + (progressEnd - progressBegin) * double(total) / double(n));
+          if (algorithm->GetAbortExecute())
+          {
+            aborted = true;
+          }
+        }
       }
     }
   });

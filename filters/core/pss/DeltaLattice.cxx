@@ -2,6 +2,7 @@
 #include "pss/DeltaLattice.h"
 #include "pss/Workspace.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pss
@@ -10,10 +11,10 @@ namespace pss
 namespace
 {
 
-/// floor(i / BrickSide) for negative i too.
+/// floor(i / BrickCells) for negative i too: the brick of cell i.
 std::int64_t brickOf(std::int64_t i)
 {
-  static_assert(LatticeCache::BrickSide == 8, "brickOf shifts by 3");
+  static_assert(LatticeCache::BrickCells == 8, "brickOf shifts by 3");
   // An arithmetic shift: floor division for negative i too (GCC and Clang; C++20 guarantees it).
   return i >> 3;
 }
@@ -98,45 +99,70 @@ LatticeCache::Brick& DeltaLattice::brickAt(const LatticeCache::BrickKey& key, Wo
   return cache.storage[cache.lastBrick];
 }
 
-const double* DeltaLattice::nodeIn(LatticeCache::Brick& brick, const LatticeCache::BrickKey& key, std::int64_t i,
-  std::int64_t j, std::int64_t k, Workspace& ws) const
+void DeltaLattice::computeNode(
+  LatticeCache::Brick& brick, const LatticeCache::BrickKey& key, int local, Workspace& ws) const
 {
   constexpr int side = LatticeCache::BrickSide;
-  const int li = static_cast<int>(i - key.i * side);
-  const int lj = static_cast<int>(j - key.j * side);
-  const int lk = static_cast<int>(k - key.k * side);
-  const int local = (li * side + lj) * side + lk;
-  double* data = brick.data.data() + local * LatticeCache::NodeData;
-  if (brick.state[local] == 0)
+  constexpr int cells = LatticeCache::BrickCells;
+  constexpr int nodeData = LatticeCache::NodeData;
+  const int l[3] = { local / (side * side), local / side % side, local % side };
+  double* data = brick.data.data() + local * nodeData;
+  // A node on a face, edge or corner of the brick belongs to the neighbours across it too.
+  const LatticeCache& cache = ws.lattice;
+  for (int across = 1; across < 8; ++across)
   {
-    // The node's own reach decides its flag, whatever the caller's evaluation had noted so far.
-    const bool before = ws.leftCompleteRegion;
-    ws.leftCompleteRegion = false;
-    // One candidate set for each block of 4 x 4 x 4 nodes, as e_I's quarters have for their nodes.
-    constexpr int block = 4;
-    const double blockSpan = block * Spacing;
-    const Vec3 blockCentre = (Vec3(static_cast<double>(i - li % block), static_cast<double>(j - lj % block),
-                                static_cast<double>(k - lk % block)) + Vec3::Constant(0.5 * block)) * Spacing;
-    focusNeighbourhoods(Field.index(), Field.parameters(),
-      Planar ? Vec3(blockCentre.x(), blockCentre.y(), 0.0) : blockCentre,
-      (Planar ? std::sqrt(0.5) : std::sqrt(0.75)) * blockSpan, ws);
-    const DeltaHessian d = Field.hessian(Vec3(i * Spacing, j * Spacing, k * Spacing), ws);
-    brick.state[local] = ws.leftCompleteRegion ? 2 : 1;
-    ws.leftCompleteRegion = before;
-    const double s2 = Spacing * Spacing;
-    data[0] = d.value;
-    data[1] = d.gradient.x() * Spacing;
-    data[2] = d.gradient.y() * Spacing;
-    data[3] = d.gradient.z() * Spacing;
-    data[4] = d.hessian(0, 1) * s2;
-    data[5] = d.hessian(0, 2) * s2;
-    data[6] = d.hessian(1, 2) * s2;
+    LatticeCache::BrickKey other = key;
+    std::int64_t* keyOf[3] = { &other.i, &other.j, &other.k };
+    int otherLocal = 0;
+    bool shared = true;
+    for (int axis = 0; axis < 3 && shared; ++axis)
+    {
+      int m = l[axis];
+      if (across & (1 << axis))
+      {
+        shared = m == 0 || m == cells;
+        *keyOf[axis] += m == 0 ? -1 : 1;
+        m = m == 0 ? cells : 0;
+      }
+      otherLocal = otherLocal * side + m;
+    }
+    if (!shared)
+    {
+      continue;
+    }
+    const auto found = cache.bricks.find(other);
+    if (found != cache.bricks.end() && cache.storage[found->second].state[otherLocal] != 0)
+    {
+      const LatticeCache::Brick& from = cache.storage[found->second];
+      std::copy_n(from.data.data() + otherLocal * nodeData, nodeData, data);
+      brick.state[local] = from.state[otherLocal];
+      return;
+    }
   }
-  if (brick.state[local] == 2)
-  {
-    ws.leftCompleteRegion = true;
-  }
-  return data;
+  // The node's own reach decides its flag, whatever the caller's evaluation had noted so far.
+  const bool before = ws.leftCompleteRegion;
+  ws.leftCompleteRegion = false;
+  const std::int64_t i = key.i * cells + l[0];
+  const std::int64_t j = key.j * cells + l[1];
+  const std::int64_t k = key.k * cells + l[2];
+  // One candidate set for each block of 4 x 4 x 4 nodes, as e_I's quarters have for their nodes.
+  constexpr int block = 4;
+  const double blockSpan = block * Spacing;
+  const auto blockStart = [](std::int64_t n) { return static_cast<double>(n - (n % block + block) % block); };
+  const Vec3 blockCentre = (Vec3(blockStart(i), blockStart(j), blockStart(k)) + Vec3::Constant(0.5 * block)) * Spacing;
+  focusNeighbourhoods(Field.index(), Field.parameters(), Planar ? Vec3(blockCentre.x(), blockCentre.y(), 0.0) : blockCentre,
+    (Planar ? std::sqrt(0.5) : std::sqrt(0.75)) * blockSpan, ws);
+  const DeltaHessian d = Field.hessian(Vec3(i * Spacing, j * Spacing, k * Spacing), ws);
+  brick.state[local] = ws.leftCompleteRegion ? 2 : 1;
+  ws.leftCompleteRegion = before;
+  const double s2 = Spacing * Spacing;
+  data[0] = d.value;
+  data[1] = d.gradient.x() * Spacing;
+  data[2] = d.gradient.y() * Spacing;
+  data[3] = d.gradient.z() * Spacing;
+  data[4] = d.hessian(0, 1) * s2;
+  data[5] = d.hessian(0, 2) * s2;
+  data[6] = d.hessian(1, 2) * s2;
 }
 
 template <bool WithDerivatives>
@@ -170,10 +196,10 @@ bool DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
   constexpr int orders = WithDerivatives ? 3 : 1;
   const int zCorners = Planar ? 1 : 2;
   const LatticeCache::BrickKey key{ brickOf(ci), brickOf(cj), brickOf(ck) };
-  constexpr int last = LatticeCache::BrickSide - 1;
-  const bool inside = ci - key.i * LatticeCache::BrickSide < last && cj - key.j * LatticeCache::BrickSide < last &&
-    (Planar || ck - key.k * LatticeCache::BrickSide < last);
-  LatticeCache::Brick* brick = inside ? &brickAt(key, ws) : nullptr;
+  LatticeCache::Brick& brick = brickAt(key, ws);
+  constexpr int side = LatticeCache::BrickSide;
+  constexpr int cells = LatticeCache::BrickCells;
+  const int origin = static_cast<int>(((ci - key.i * cells) * side + (cj - key.j * cells)) * side + (ck - key.k * cells));
   // The tensor-product sum contracted one axis at a time. A node's seven data each take the value
   // (V) or slope (D) basis along x, y and z: delta VVV, d/dx DVV, d/dy VDV, d/dz VVD, d2/dxdy DDV,
   // d2/dxdz DVD, d2/dydz VDD. Along x, for derivative order a of the x basis, they group by what
@@ -185,13 +211,16 @@ bool DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
     {
       for (int cx = 0; cx < 2; ++cx)
       {
-        const std::int64_t i = ci + cx, j = cj + cy, k = ck + cz;
-        // A cell inside one brick looks the brick up once; one on a brick's far faces, per corner.
-        const double* q = inside ? nodeIn(*brick, key, i, j, k, ws)
-                                 : [&] {
-                                     const LatticeCache::BrickKey own{ brickOf(i), brickOf(j), brickOf(k) };
-                                     return nodeIn(brickAt(own, ws), own, i, j, k, ws);
-                                   }();
+        const int local = origin + (cx * side + cy) * side + cz;
+        if (brick.state[local] != 1)
+        {
+          if (brick.state[local] == 0)
+          {
+            computeNode(brick, key, local, ws);
+          }
+          ws.leftCompleteRegion = ws.leftCompleteRegion || brick.state[local] == 2;
+        }
+        const double* q = brick.data.data() + local * LatticeCache::NodeData;
         for (int a = 0; a < orders; ++a)
         {
           const double v = bx.value[cx][a];

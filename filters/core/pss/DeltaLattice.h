@@ -15,7 +15,7 @@
  * Determinism: a node's data are a function of its integer coordinates only (the exact delta there,
  * whose neighbourhood is canonical), so what a workspace holds changes the time, never a bit of a
  * result, whatever the threads or the order of the work. Nodes are computed when a cell first needs
- * them and kept in bricks of 8 x 8 x 8 nodes in the workspace (LatticeCache), which is cleared
+ * them and kept in bricks of 9 x 9 x 9 nodes in the workspace (LatticeCache), which is cleared
  * when it passes its capacity. A node computed from cloud points beyond the index's complete region
  * keeps that flag, and every read of it sets Workspace::leftCompleteRegion, as the exact
  * evaluation would.
@@ -42,12 +42,16 @@ struct Workspace;
 /// DeltaLattice's business.
 struct LatticeCache
 {
-  static constexpr int BrickSide = 8;
+  /// A brick covers 8 x 8 x 8 cells and holds their 9 x 9 x 9 corner nodes: every cell finds its
+  /// eight corners in one brick. Nodes on a brick's faces are held by its neighbours too (copied
+  /// from there when they have them, else computed: the same bits either way).
+  static constexpr int BrickCells = 8;
+  static constexpr int BrickSide = BrickCells + 1;
   static constexpr int BrickNodes = BrickSide * BrickSide * BrickSide;
   /// Per node: delta, s * grad delta (3), s^2 * the mixed second derivatives xy, xz, yz.
   static constexpr int NodeData = 7;
-  /// About 58 MB of bricks (28 KB each) per workspace before it starts again empty.
-  static constexpr std::size_t MaxBricks = 2048;
+  /// About 57 MB of bricks (41 KB each) per workspace before it starts again empty.
+  static constexpr std::size_t MaxBricks = 1400;
 
   struct BrickKey
   {
@@ -100,9 +104,9 @@ private:
   bool interpolate(const Vec3& y, Workspace& ws, double& value, Vec3* gradient, Mat3* hessian) const;
   /// The brick of @p key, added (empty) when the cache lacks it.
   LatticeCache::Brick& brickAt(const LatticeCache::BrickKey& key, Workspace& ws) const;
-  /// The data of node (i, j, k) of @p brick (whose key is @p key), computed when missing.
-  const double* nodeIn(LatticeCache::Brick& brick, const LatticeCache::BrickKey& key, std::int64_t i, std::int64_t j,
-    std::int64_t k, Workspace& ws) const;
+  /// Makes node @p local of @p brick (whose key is @p key) ready: copied from a neighbouring
+  /// brick that shares it, else computed.
+  void computeNode(LatticeCache::Brick& brick, const LatticeCache::BrickKey& key, int local, Workspace& ws) const;
 
   const DistanceField& Field;
   double Spacing; ///< in the cloud's units

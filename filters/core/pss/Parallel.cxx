@@ -37,6 +37,46 @@ ParallelLoop threadLoop(int threads)
   };
 }
 
+ChunkQueue::ChunkQueue(std::size_t n, std::size_t workers, std::size_t chunk)
+  : Chunk(std::max<std::size_t>(1, chunk))
+  , Parts(std::max<std::size_t>(1, workers))
+{
+  for (std::size_t w = 0; w < Parts.size(); ++w)
+  {
+    Parts[w] = { n * w / Parts.size(), n * (w + 1) / Parts.size() };
+  }
+}
+
+bool ChunkQueue::take(std::size_t worker, std::size_t& begin, std::size_t& end)
+{
+  // A lock per chunk costs nothing beside a chunk's work.
+  std::lock_guard<std::mutex> lock(Mutex);
+  Part& own = Parts[worker];
+  if (own.front < own.back)
+  {
+    begin = own.front;
+    end = std::min(own.back, begin + Chunk);
+    own.front = end;
+    return true;
+  }
+  Part* victim = &own;
+  for (Part& p : Parts)
+  {
+    if (p.back - p.front > victim->back - victim->front)
+    {
+      victim = &p;
+    }
+  }
+  if (victim->front >= victim->back)
+  {
+    return false;
+  }
+  end = victim->back;
+  begin = end - std::min(end - victim->front, Chunk);
+  victim->back = begin;
+  return true;
+}
+
 void parallelFor(std::size_t n, int threads, const ChunkBody& body)
 {
   if (n == 0)
@@ -50,19 +90,19 @@ void parallelFor(std::size_t n, int threads, const ChunkBody& body)
     body(0, n, ws);
     return;
   }
-  // Small chunks handed out on demand balance uneven per-point cost (projections far from the
-  // cloud take many more iterations than those near it).
-  const std::size_t chunk = std::max<std::size_t>(1, n / (workers * 16));
-  std::atomic<std::size_t> next{ 0 };
+  // Some 16 chunks a worker.
+  ChunkQueue queue(n, workers, n / (workers * 16));
   std::exception_ptr failure;
   std::mutex failureMutex;
-  auto work = [&]() {
+  auto work = [&](std::size_t self) {
     try
     {
       Workspace ws;
-      for (std::size_t begin = next.fetch_add(chunk); begin < n; begin = next.fetch_add(chunk))
+      std::size_t begin = 0;
+      std::size_t end = 0;
+      while (queue.take(self, begin, end))
       {
-        body(begin, std::min(n, begin + chunk), ws);
+        body(begin, end, ws);
       }
     }
     catch (...)
@@ -78,9 +118,9 @@ void parallelFor(std::size_t n, int threads, const ChunkBody& body)
   pool.reserve(workers - 1);
   for (std::size_t i = 1; i < workers; ++i)
   {
-    pool.emplace_back(work);
+    pool.emplace_back(work, i);
   }
-  work();
+  work(0);
   for (std::thread& t : pool)
   {
     t.join();

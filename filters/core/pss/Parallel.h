@@ -9,7 +9,9 @@
 
 #include <cstddef>
 #include <functional>
+#include <mutex>
 #include <utility>
+#include <vector>
 
 namespace pss
 {
@@ -25,6 +27,35 @@ int resolveThreadCount(int requested);
  * results written per index are independent of the thread count.
  */
 void parallelFor(std::size_t n, int threads, const std::function<void(std::size_t, std::size_t)>& body);
+
+/**
+ * The chunks of [0, n) that @p workers workers take in turn. Each worker owns a contiguous part
+ * and takes chunks from its front; a worker whose part is done takes chunks from the back of the
+ * part with the most left. The batch entry points visit points in spatial order, so contiguous
+ * parts keep each worker's points, and what its workspace caches (the delta lattice's nodes),
+ * together, while the stealing still balances uneven per-point cost (projections far from the
+ * cloud take many more iterations than those near it). Which worker runs a chunk never changes
+ * what it computes.
+ */
+class ChunkQueue
+{
+public:
+  /// Chunks of @p chunk indices (at least 1), the last of a part shorter.
+  ChunkQueue(std::size_t n, std::size_t workers, std::size_t chunk);
+  /// The next chunk [begin, end) for @p worker (in [0, workers)); false when none is left.
+  bool take(std::size_t worker, std::size_t& begin, std::size_t& end);
+  std::size_t workers() const { return Parts.size(); }
+
+private:
+  struct Part
+  {
+    std::size_t front = 0;
+    std::size_t back = 0;
+  };
+  std::size_t Chunk;
+  std::vector<Part> Parts;
+  std::mutex Mutex;
+};
 
 /// A chunk of a loop's work: the indices [begin, end), with the workspace of the thread running it.
 using ChunkBody = std::function<void(std::size_t begin, std::size_t end, Workspace& ws)>;

@@ -149,7 +149,8 @@ private:
  * one it had. Stability is (e_perp - e_min) / (e_perp + e_min), e_perp the least energy over
  * directions orthogonal to n_I: for a quadratic form this is exactly the eigenvalue measure the
  * other rules report. Where the caller only needs to know that n is defined (a projection's
- * intermediate iterates), e_perp may be estimated from the tilt Hessian (see fit()).
+ * intermediate iterates), e_perp may be estimated from the tilt Hessian (see fit()). The fast path
+ * (SurfaceParameters::deltaLattice > 0) takes both energies of the ratio from the rough rule.
  */
 class IntegralDirection : public DirectionRule
 {
@@ -179,7 +180,8 @@ private:
   int dimension() const { return Index.dimension(); }
   Minimum refineDirection(const Vec3& x, const Vec3& start, Workspace& ws) const;
   /// The searches for n_I and e_perp start near @p near (the last iterate's answer) when given.
-  Across leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n, const Vec3* near, Workspace& ws) const;
+  /// @p rough: e_I with IntegralEnergy::roughValue's rule.
+  Across leastEnergyOrthogonalTo(const Vec3& x, const Vec3& n, const Vec3* near, bool rough, Workspace& ws) const;
   Minimum minimum2D(const Vec3& x, const Vec3* near, Workspace& ws) const;
   Minimum minimum3D(const Vec3& x, const Vec3* near, Workspace& ws) const;
 
