@@ -200,36 +200,41 @@ bool DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
   constexpr int side = LatticeCache::BrickSide;
   constexpr int cells = LatticeCache::BrickCells;
   const int origin = static_cast<int>(((ci - key.i * cells) * side + (cj - key.j * cells)) * side + (ck - key.k * cells));
+  for (int cz = 0; cz < zCorners; ++cz)
+  {
+    for (int corner = 0; corner < 4; ++corner)
+    {
+      const int local = origin + ((corner >> 1) * side + (corner & 1)) * side + cz;
+      if (brick.state[local] != 1)
+      {
+        if (brick.state[local] == 0)
+        {
+          computeNode(brick, key, local, ws);
+        }
+        ws.leftCompleteRegion = ws.leftCompleteRegion || brick.state[local] == 2;
+      }
+    }
+  }
   // The tensor-product sum contracted one axis at a time. A node's seven data each take the value
   // (V) or slope (D) basis along x, y and z: delta VVV, d/dx DVV, d/dy VDV, d/dz VVD, d2/dxdy DDV,
   // d2/dxdz DVD, d2/dydz VDD. Along x, for derivative order a of the x basis, they group by what
-  // they take along y and z: A (V, V), B (D, V), C (V, D), E (D, D).
-  double A[2][2][orders] = {}, B[2][2][orders] = {}, C[2][2][orders] = {}, E[2][2][orders] = {};
+  // they take along y and z: A (V, V), B (D, V), C (V, D), E (D, D). (Assigned, not accumulated
+  // from zero: zeroing the arrays cost a tenth of the time.)
+  double A[2][2][orders], B[2][2][orders], C[2][2][orders], E[2][2][orders];
+  constexpr int nextX = side * side * LatticeCache::NodeData;
   for (int cz = 0; cz < zCorners; ++cz)
   {
     for (int cy = 0; cy < 2; ++cy)
     {
-      for (int cx = 0; cx < 2; ++cx)
+      const double* q = brick.data.data() + (origin + cy * side + cz) * LatticeCache::NodeData;
+      const double* r = q + nextX;
+      for (int a = 0; a < orders; ++a)
       {
-        const int local = origin + (cx * side + cy) * side + cz;
-        if (brick.state[local] != 1)
-        {
-          if (brick.state[local] == 0)
-          {
-            computeNode(brick, key, local, ws);
-          }
-          ws.leftCompleteRegion = ws.leftCompleteRegion || brick.state[local] == 2;
-        }
-        const double* q = brick.data.data() + local * LatticeCache::NodeData;
-        for (int a = 0; a < orders; ++a)
-        {
-          const double v = bx.value[cx][a];
-          const double d = bx.slope[cx][a];
-          A[cz][cy][a] += q[0] * v + q[1] * d;
-          B[cz][cy][a] += q[2] * v + q[4] * d;
-          C[cz][cy][a] += q[3] * v + q[5] * d;
-          E[cz][cy][a] += q[6] * v;
-        }
+        const double v0 = bx.value[0][a], d0 = bx.slope[0][a], v1 = bx.value[1][a], d1 = bx.slope[1][a];
+        A[cz][cy][a] = q[0] * v0 + q[1] * d0 + r[0] * v1 + r[1] * d1;
+        B[cz][cy][a] = q[2] * v0 + q[4] * d0 + r[2] * v1 + r[4] * d1;
+        C[cz][cy][a] = q[3] * v0 + q[5] * d0 + r[3] * v1 + r[5] * d1;
+        E[cz][cy][a] = q[6] * v0 + r[6] * v1;
       }
     }
   }
