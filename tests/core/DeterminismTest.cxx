@@ -257,6 +257,45 @@ TEST(Determinism, ParallelForVisitsEachIndexOnce)
   EXPECT_GE(resolveThreadCount(0), 1);
 }
 
+// Truth (ChunkQueue's contract): a worker takes its own contiguous part from the front, then
+// chunks from the back of the part with the most left; every index is handed out exactly once.
+TEST(Determinism, ChunkQueueKeepsPartsContiguousAndStealsFromTheBack)
+{
+  ChunkQueue queue(100, 2, 10);
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  ASSERT_TRUE(queue.take(0, begin, end));
+  EXPECT_EQ(begin, 0u);
+  EXPECT_EQ(end, 10u);
+  std::vector<int> hits(100, 0);
+  std::fill(hits.begin(), hits.begin() + 10, 1);
+  std::vector<std::size_t> starts;
+  while (queue.take(1, begin, end))
+  {
+    starts.push_back(begin);
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      ++hits[i];
+    }
+  }
+  // Worker 1's own part 50..99 in order, then worker 0's rest stolen from its back.
+  const std::vector<std::size_t> expected{ 50, 60, 70, 80, 90, 40, 30, 20, 10 };
+  EXPECT_EQ(starts, expected);
+  EXPECT_FALSE(queue.take(0, begin, end));
+  EXPECT_TRUE(std::all_of(hits.begin(), hits.end(), [](int h) { return h == 1; }));
+  // Uneven sizes: parts of 3 and 4 indices with chunks of 2, one worker taking everything.
+  ChunkQueue small(7, 2, 2);
+  std::vector<int> seen(7, 0);
+  while (small.take(0, begin, end))
+  {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      ++seen[i];
+    }
+  }
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int h) { return h == 1; }));
+}
+
 // Truth: a projection does not depend on what the thread computed before. A start 1e300 from the
 // cloud (its squared distance overflows) used to leave the thread's candidate cache claiming a
 // ball it did not hold, and the next start on that thread then stopped with NoExtremum instead of
