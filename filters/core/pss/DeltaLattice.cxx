@@ -157,12 +157,13 @@ void DeltaLattice::computeNode(
   ws.leftCompleteRegion = before;
   const double s2 = Spacing * Spacing;
   data[0] = d.value;
-  data[1] = d.gradient.x() * Spacing;
+  data[1] = d.gradient.z() * Spacing;
   data[2] = d.gradient.y() * Spacing;
-  data[3] = d.gradient.z() * Spacing;
-  data[4] = d.hessian(0, 1) * s2;
+  data[3] = d.hessian(1, 2) * s2;
+  data[4] = d.gradient.x() * Spacing;
   data[5] = d.hessian(0, 2) * s2;
-  data[6] = d.hessian(1, 2) * s2;
+  data[6] = d.hessian(0, 1) * s2;
+  data[7] = 0.0;
 }
 
 template <bool WithDerivatives>
@@ -215,59 +216,66 @@ bool DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
       }
     }
   }
-  // The tensor-product sum contracted one axis at a time. A node's seven data each take the value
-  // (V) or slope (D) basis along x, y and z: delta VVV, d/dx DVV, d/dy VDV, d/dz VVD, d2/dxdy DDV,
-  // d2/dxdz DVD, d2/dydz VDD. Along x, for derivative order a of the x basis, they group by what
-  // they take along y and z: A (V, V), B (D, V), C (V, D), E (D, D). (Assigned, not accumulated
-  // from zero: zeroing the arrays cost a tenth of the time.)
-  double A[2][2][orders], B[2][2][orders], C[2][2][orders], E[2][2][orders];
+  // The tensor-product sum contracted one axis at a time. A node's data each take the value (V)
+  // or slope (D) basis along x, y and z: delta VVV, d/dz VVD, d/dy VDV, d2/dydz VDD take x's
+  // value basis, d/dx DVV, d2/dxdz DVD, d2/dxdy DDV its slope basis; the node's two groups of
+  // four (LatticeCache::NodeData) line up so that one vector sum along x gives, for x's
+  // derivative order a, the parts that take (V, V), (V, D), (D, V), (D, D) along (y, z):
+  // X = (A, C, B, E).
+  using Array2 = Eigen::Array2d;
+  using Array4 = Eigen::Array4d;
+  Array4 X[2][2][orders];
   constexpr int nextX = side * side * LatticeCache::NodeData;
   for (int cz = 0; cz < zCorners; ++cz)
   {
     for (int cy = 0; cy < 2; ++cy)
     {
       const double* q = brick.data.data() + (origin + cy * side + cz) * LatticeCache::NodeData;
-      const double* r = q + nextX;
+      const Eigen::Map<const Array4> qV(q), qD(q + 4), rV(q + nextX), rD(q + nextX + 4);
       for (int a = 0; a < orders; ++a)
       {
-        const double v0 = bx.value[0][a], d0 = bx.slope[0][a], v1 = bx.value[1][a], d1 = bx.slope[1][a];
-        A[cz][cy][a] = q[0] * v0 + q[1] * d0 + r[0] * v1 + r[1] * d1;
-        B[cz][cy][a] = q[2] * v0 + q[4] * d0 + r[2] * v1 + r[4] * d1;
-        C[cz][cy][a] = q[3] * v0 + q[5] * d0 + r[3] * v1 + r[5] * d1;
-        E[cz][cy][a] = q[6] * v0 + r[6] * v1;
+        X[cz][cy][a] = qV * bx.value[0][a] + qD * bx.slope[0][a] + rV * bx.value[1][a] + rD * bx.slope[1][a];
       }
     }
   }
-  // Along y, for orders (a along x, b along y): the parts that take z's value basis (P) and its
-  // slope basis (Q).
-  auto P = [&](int cz, int a, int b) {
-    return by.value[0][b] * A[cz][0][a] + by.slope[0][b] * B[cz][0][a] + by.value[1][b] * A[cz][1][a] +
-      by.slope[1][b] * B[cz][1][a];
+  // Along y, for orders (a along x, b along y) and each z layer: (P, Q), the parts that take z's
+  // value basis and its slope basis ((A, C) take y's value basis, (B, E) its slope basis).
+  struct Layers
+  {
+    Array2 pq[2];
   };
-  auto Q = [&](int cz, int a, int b) {
-    return by.value[0][b] * C[cz][0][a] + by.slope[0][b] * E[cz][0][a] + by.value[1][b] * C[cz][1][a] +
-      by.slope[1][b] * E[cz][1][a];
+  auto layers = [&](int a, int b) {
+    Layers l;
+    l.pq[1] = Array2::Zero();
+    for (int cz = 0; cz < zCorners; ++cz)
+    {
+      const Array4& y0 = X[cz][0][a];
+      const Array4& y1 = X[cz][1][a];
+      l.pq[cz] = y0.template head<2>() * by.value[0][b] + y0.template tail<2>() * by.slope[0][b] +
+        y1.template head<2>() * by.value[1][b] + y1.template tail<2>() * by.slope[1][b];
+    }
+    return l;
   };
   // Along z, for order c of the z basis (in the plane only the z = 0 layer, with its value basis).
-  auto term = [&](int a, int b, int c) {
+  auto term = [&](const Layers& l, int c) {
     if (Planar)
     {
-      return c == 0 ? P(0, a, b) : 0.0;
+      return c == 0 ? l.pq[0](0) : 0.0;
     }
-    return bz.value[0][c] * P(0, a, b) + bz.slope[0][c] * Q(0, a, b) + bz.value[1][c] * P(1, a, b) +
-      bz.slope[1][c] * Q(1, a, b);
+    return (l.pq[0] * Array2(bz.value[0][c], bz.slope[0][c]) + l.pq[1] * Array2(bz.value[1][c], bz.slope[1][c])).sum();
   };
-  const double f = term(0, 0, 0);
-  value = f;
+  const Layers l00 = layers(0, 0);
+  value = term(l00, 0);
   if constexpr (WithDerivatives)
   {
+    const Layers l10 = layers(1, 0), l01 = layers(0, 1), l20 = layers(2, 0), l02 = layers(0, 2), l11 = layers(1, 1);
     // Cell coordinates to the cloud's: one factor 1 / Spacing per derivative.
     const double inv = 1.0 / Spacing;
     const double inv2 = inv * inv;
-    *gradient = Vec3(term(1, 0, 0), term(0, 1, 0), term(0, 0, 1)) * inv;
-    const double hxy = term(1, 1, 0), hxz = term(1, 0, 1), hyz = term(0, 1, 1);
+    *gradient = Vec3(term(l10, 0), term(l01, 0), term(l00, 1)) * inv;
+    const double hxy = term(l11, 0), hxz = term(l10, 1), hyz = term(l01, 1);
     Mat3& H = *hessian;
-    H << term(2, 0, 0), hxy, hxz, hxy, term(0, 2, 0), hyz, hxz, hyz, term(0, 0, 2);
+    H << term(l20, 0), hxy, hxz, hxy, term(l02, 0), hyz, hxz, hyz, term(l00, 2);
     H *= inv2;
   }
   return true;

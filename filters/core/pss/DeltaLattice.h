@@ -48,10 +48,11 @@ struct LatticeCache
   static constexpr int BrickCells = 8;
   static constexpr int BrickSide = BrickCells + 1;
   static constexpr int BrickNodes = BrickSide * BrickSide * BrickSide;
-  /// Per node: delta, s * grad delta (3), s^2 * the mixed second derivatives xy, xz, yz.
-  static constexpr int NodeData = 7;
-  /// About 57 MB of bricks (41 KB each) per workspace before it starts again empty.
-  static constexpr std::size_t MaxBricks = 1400;
+  /// Per node, in two groups of four that the interpolation contracts as vectors (with s the
+  /// spacing): delta, s d/dz, s d/dy, s^2 d2/dydz; s d/dx, s^2 d2/dxdz, s^2 d2/dxdy, 0.
+  static constexpr int NodeData = 8;
+  /// About 57 MB of bricks (47 KB each) per workspace before it starts again empty.
+  static constexpr std::size_t MaxBricks = 1224;
 
   struct BrickKey
   {
