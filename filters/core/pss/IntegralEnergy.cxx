@@ -506,19 +506,18 @@ DirectionFit IntegralDirection::fit(const Vec3& x, DirectionMemory& memory, Work
   // that stability is not clearly above the threshold (below 0.05, as for the estimate above)
   // the full rule decides, as on the exact path. Measured: README, reading 11.
   Across across;
-  double eMin = least.value;
+  Direction result;
   bool decided = false;
   if (Params.deltaLattice > 0.0)
   {
     across = leastEnergyOrthogonalTo(x, least.n, acrossStart, true, ws);
-    eMin = Integral.roughValue(x, least.n, ws);
-    decided = finishDirection(least.n, eMin, across.value, Params.minStability).stability >=
-      std::max(clearlyDefined, Params.minStability);
+    result = finishDirection(least.n, Integral.roughValue(x, least.n, ws), across.value, Params.minStability);
+    decided = result.stability >= std::max(clearlyDefined, Params.minStability);
   }
   if (!decided)
   {
     across = leastEnergyOrthogonalTo(x, least.n, acrossStart, false, ws);
-    eMin = least.value;
+    result = finishDirection(least.n, least.value, across.value, Params.minStability);
   }
   memory.stabilityEstimated = false;
   memory.valid = least.n.allFinite() && across.direction.allFinite();
@@ -527,7 +526,7 @@ DirectionFit IntegralDirection::fit(const Vec3& x, DirectionMemory& memory, Work
   memory.across = across.direction;
   // No neighbourhood of x to hand on: only a cold 3D search gathers one (in Workspace::local,
   // where a plane fit's own gather of x then finds it).
-  return { finishDirection(least.n, eMin, across.value, Params.minStability), nullptr };
+  return { result, nullptr };
 }
 
 } // namespace pss

@@ -44,7 +44,6 @@ public:
   ChunkQueue(std::size_t n, std::size_t workers, std::size_t chunk);
   /// The next chunk [begin, end) for @p worker (in [0, workers)); false when none is left.
   bool take(std::size_t worker, std::size_t& begin, std::size_t& end);
-  std::size_t workers() const { return Parts.size(); }
 
 private:
   struct Part
