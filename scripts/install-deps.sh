@@ -17,6 +17,7 @@ packages=(
   paraview-dev python3-paraview qtbase5-dev libdouble-conversion-dev
   mpi-default-dev mpi-default-bin qttools5-dev qtxmlpatterns5-dev-tools
   xvfb xauth
+  liblzf-dev doxygen
 )
 
 missing=()
