@@ -273,12 +273,14 @@ void vtkPCDWriter::WriteData()
     {
       taken = taken || column.field.name == name;
     }
-    if ((name == "RGB" || name == "RGBA") && array->GetDataType() == VTK_UNSIGNED_CHAR && components == (name == "RGB" ? 3 : 4))
+    // Only the active colours and normals take PCD's own fields: what vtkPCDReader makes of them.
+    if (array == pointData->GetScalars() && (name == "RGB" || name == "RGBA") &&
+      array->GetDataType() == VTK_UNSIGNED_CHAR && components == (name == "RGB" ? 3 : 4))
     {
       PcdType(VTK_UNSIGNED_INT, typed);
       add(name == "RGB" ? "rgb" : "rgba", array, Column::PackedColor, 0, typed, 1);
     }
-    else if (name == "Normals" && components == 3 && typed.type == 'F')
+    else if (array == pointData->GetNormals() && components == 3 && typed.type == 'F')
     {
       for (int c = 0; c < 3; ++c)
       {

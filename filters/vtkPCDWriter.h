@@ -6,8 +6,9 @@
  * vtkPCDWriter writes the points of any vtkPointSet and its numeric point arrays as PCD fields,
  * so that vtkPCDReader reads back the same points and arrays bit for bit:
  * - the points become `x y z` (4-byte floats for float points, else 8-byte doubles);
- * - `RGB` / `RGBA` (3 or 4 unsigned-char components) become the packed `rgb` / `rgba` field;
- * - `Normals` (3 components) becomes `normal_x normal_y normal_z`;
+ * - the active scalars when they are `RGB` / `RGBA` (3 or 4 unsigned-char components) become the
+ *   packed `rgb` / `rgba` field;
+ * - the active normals (3 float or double components) become `normal_x normal_y normal_z`;
  * - every other numeric array becomes a field of its name (spaces replaced by `_`), its type and
  *   its number of components (COUNT); non-numeric arrays are left out with a warning.
  *

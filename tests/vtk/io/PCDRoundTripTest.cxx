@@ -68,6 +68,8 @@ vtkSmartPointer<vtkPolyData> RichCloud(int pointType, vtkIdType n)
   AddArray<vtkUnsignedShortArray>(poly, "ring", 1, 5.0);
   AddArray<vtkTypeUInt64Array>(poly, "stamp", 1, 11.0);
   AddArray<vtkTypeInt64Array>(poly, "offset", 1, -13.0);
+  poly->GetPointData()->SetActiveScalars("RGB");
+  poly->GetPointData()->SetActiveNormals("Normals");
   vtkNew<vtkDoubleArray> viewpoint;
   viewpoint->SetName("Viewpoint");
   for (double v : { 0.5, -1.0, 2.0, 0.0, 1.0, 0.0, 0.0 })
