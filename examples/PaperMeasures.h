@@ -120,7 +120,7 @@ struct BandMeasure
 /// Samples n of @p variant along NoisyBandPaths with vtkPointSetSurfaceFieldSampler and reduces it.
 BandMeasure MeasureNoisyBand(const Scene& noisy, int variant);
 
-/// Acceptance bounds of Figure 8 (measured, stated in the README; see the tests).
+/// Acceptance bounds of Figure 8 (measured, stated in docs/paper.md; see the tests).
 /// n_MLS's median turn lies in the band's outer part: between these multiples of sigma.
 constexpr double kLevinTurnLowSigmas = 1.0;
 constexpr double kLevinTurnHighSigmas = kBandSigmas;
