@@ -7,9 +7,10 @@
  * of a Point Set Surface" (LevinMLS, NormalizedMLS, CenterOfMass, Integral, Delta), the Gaussian
  * scale h, the dimension of the cloud and the numerical settings of the kernel. The filters
  * (vtkPointSetSurfaceProjection, vtkPointSetSurfaceDomainClassifier,
- * vtkPointSetSurfaceFieldSampler, vtkPointSetSurfaceEnergyGlyphs) and the implicit function
- * vtkPointSetSurfaceImplicitFunction each hold one (GetSurface()), so a pipeline can share a single
- * description among them, the way vtkPointInterpolator shares an interpolation kernel.
+ * vtkPointSetSurfaceFieldSampler, vtkPointSetSurfaceEnergyGlyphs, vtkPointSetSurfaceMesher) and
+ * the implicit function vtkPointSetSurfaceImplicitFunction each hold one (GetSurface()), so a
+ * pipeline can share a single description among them, the way vtkPointInterpolator shares an
+ * interpolation kernel. The definitions and their equations: docs/paper.md.
  *
  * Prepare() builds the k-d tree and the surface definition for a cloud and caches them until the
  * cloud or a parameter changes. Points with NaN or infinite coordinates are left out of the index
