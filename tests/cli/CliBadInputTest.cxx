@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The pss tool on unreadable, malformed and absurd input, as the README's bad-input table states
-// it: every case exits 1 with a message that says what is wrong (never a crash, which RunCommand
-// reports as exit -1), and nothing is written.
+// The pss tool on unreadable, malformed and absurd input, as the bad-input table
+// (docs/bad-input.md) states it: every case exits 1 with a message that says what is wrong (never
+// a crash, which RunCommand reports as exit -1), and nothing is written.
 #include "CliTestUtilities.h"
 
 #include "vtkNew.h"

@@ -11,7 +11,7 @@ Fails (exit status 1, one line per problem) when
   the class's header and its superclasses' headers in filters/), or the member cannot be found;
 - a range or enumeration domain allows values that the C++ setter's vtkSetClampMacro clamps away;
 - a class of the VTK module has no proxy (vtkPointSetSurfaceImplicitFunction excepted: it is not a
-  pipeline object, see README "ParaView plugin"; nor the abstract vtkPointSetSurfaceAlgorithm), or the surface sub-proxy does not expose every
+  pipeline object, see docs/paraview.md; nor the abstract vtkPointSetSurfaceAlgorithm), or the surface sub-proxy does not expose every
   property of the PointSetSurface proxy;
 - a filter whose class (or superclass) says it runs distributed (SupportsDistributedRun() returning
   true) is still multiprocess_support="single_process", or a single_process filter does not say
