@@ -114,10 +114,11 @@ def _number(what, value, integer=False):
 
 def _set(obj, prop, value, keyword):
     """obj.Set<prop>(value); the VTK setters clamp silently, so a value they would change is refused."""
+    if isinstance(value, float) and math.isnan(value):
+        # A clamp lets NaN through, and no filter checks its numerical settings for it.
+        raise InputError("%s must be a number, got nan" % keyword)
     getattr(obj, "Set" + prop)(value)
     got = getattr(obj, "Get" + prop)()
-    if isinstance(value, float) and math.isnan(value):
-        return
     if got != value:
         low = getattr(obj, "Get%sMinValue" % prop, None)
         high = getattr(obj, "Get%sMaxValue" % prop, None)
@@ -163,8 +164,9 @@ class _Cloud:
         if nonfinite == "raise" and len(points):
             bad = np.flatnonzero(~_finite_rows(points))
             if len(bad):
-                raise InputError("%s: %d of %d points have a NaN or infinite coordinate (the first: index %d); "
-                                 "nonfinite='allow' lets the filters handle them" % (what, len(bad), len(points), bad[0]))
+                raise InputError("%s: %d of %d points %s a NaN or infinite coordinate (the first: index %d); "
+                                 "nonfinite='allow' lets the filters handle them"
+                                 % (what, len(bad), len(points), "has" if len(bad) == 1 else "have", bad[0]))
 
 
 def _points_of(dataset):

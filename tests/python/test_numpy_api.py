@@ -383,6 +383,10 @@ class ErrorsTest(unittest.TestCase):
                                    pss.project, cloud, variant="apss")
         self.assert_raises_quietly(pss.InputError, "tolerance must be within", pss.project, cloud, tolerance=5.0)
         self.assert_raises_quietly(pss.InputError, "cell must be within", pss.mesh, cloud, cell=0.01)
+        # A clamp would let NaN through to the filter.
+        self.assert_raises_quietly(pss.InputError, "tolerance must be a number", pss.project, cloud,
+                                   tolerance=float("nan"))
+        self.assert_raises_quietly(pss.InputError, "band must be", pss.mesh, cloud, band=float("inf"))
         self.assert_raises_quietly(pss.InputError, "threads", pss.project, cloud, threads=-1)
         self.assert_raises_quietly(pss.InputError, "progress", pss.project, cloud, progress=3)
         self.assert_raises_quietly(pss.Error, "Dimension must be Auto (0), 2 or 3, not 1", pss.project, cloud,
