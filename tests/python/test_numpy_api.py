@@ -318,8 +318,13 @@ class ThreadsTest(unittest.TestCase):
         before = vtkSMPTools.GetEstimatedNumberOfThreads()
         for function in (pss.project, pss.classify, pss.mesh):
             with self.subTest(function=function.__name__):
-                one = function(cloud, threads=1)
-                two = function(cloud, threads=2)
+                # The count in force during each run, read while it runs.
+                counts = {1: set(), 2: set()}
+                one = function(cloud, threads=1,
+                               progress=lambda f: counts[1].add(vtkSMPTools.GetEstimatedNumberOfThreads()))
+                two = function(cloud, threads=2,
+                               progress=lambda f: counts[2].add(vtkSMPTools.GetEstimatedNumberOfThreads()))
+                self.assertEqual(counts, {1: {1}, 2: {2}})
                 self.assertEqual(sorted(one), sorted(two))
                 for name in one:
                     self.assertTrue(np.array_equal(one[name], two[name], equal_nan=True), name)
