@@ -53,9 +53,9 @@ public:
    * Leave out points whose x, y or z is NaN or infinite. Default on. Off keeps every point of the
    * file in its order (an organized cloud then keeps its whole image).
    */
-  vtkSetMacro(SkipNaNPoints, vtkTypeBool);
-  vtkGetMacro(SkipNaNPoints, vtkTypeBool);
-  vtkBooleanMacro(SkipNaNPoints, vtkTypeBool);
+  vtkSetMacro(SkipNaNPoints, bool);
+  vtkGetMacro(SkipNaNPoints, bool);
+  vtkBooleanMacro(SkipNaNPoints, bool);
   ///@}
 
   /// Points left out by the last update (0 with SkipNaNPoints off).
@@ -74,7 +74,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   char* FileName = nullptr;
-  vtkTypeBool SkipNaNPoints = true;
+  bool SkipNaNPoints = true;
   vtkIdType NumberOfSkippedPoints = 0;
   vtkIdType NumberOfPointsInFile = 0;
 
