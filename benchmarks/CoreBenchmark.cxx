@@ -27,6 +27,9 @@
  *   other than compute, and the process's peak memory per point. 1M and 10M run by default
  *   (not with --quick); 100M only when --rows names it ("pss-100m": about 20 GB and 10 minutes).
  *   The files go to $TMPDIR (default /tmp) and are removed afterwards.
+ * - read 10m pcd / vtp: the read stage of `pss project` on one 10^7-point sphere stored as a
+ *   binary_compressed .pcd and as an LZ4 .vtp (both written by `pss generate`), alternated, best
+ *   of three each (not with --quick).
  *
  * Columns: points (or samples) per second, mean iterations, mean neighbours (points with a
  * weight above exp(-9) of the nearest one at the final point), peak RSS of the row's process when
@@ -59,6 +62,7 @@
 #include <string>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <map>
 #include <vector>
@@ -487,6 +491,63 @@ void WholeProcessRow(const std::string& name, std::size_t n)
     stage["read"], stage["index"], stage["compute"], stage["write"], wall, 100.0 * (wall - stage["compute"]) / wall);
   std::fflush(stdout);
 }
+
+// The read stage of `pss project` (one start point, a fixed h: nothing else of note) on the same
+// generated sphere of @p n points stored as binary_compressed .pcd and as .vtp (LZ4), the two
+// alternated three times in one run; prints the best read time of each.
+void ReadRow(std::size_t n)
+{
+  const char* tmp = std::getenv("TMPDIR");
+  const std::string base = std::string(tmp && *tmp ? tmp : "/tmp") + "/pss-bench-" + std::to_string(getpid());
+  const std::string pss = PSS_BENCH_PSS;
+  const std::string start = base + "-start.xyz";
+  std::FILE* f = std::fopen(start.c_str(), "w");
+  if (!f)
+  {
+    return;
+  }
+  std::fprintf(f, "0 0 50\n");
+  std::fclose(f);
+  const char* const formats[] = { ".pcd", ".vtp" };
+  std::string log;
+  for (const char* ext : formats)
+  {
+    if (!RunCommand(pss + " generate --scene sphere --count " + std::to_string(n) + " --noise 0.01 -o " + base + ext, log))
+    {
+      std::printf("read rows: failed to generate the cloud: %s\n", log.c_str());
+      return;
+    }
+  }
+  double best[2] = { 1e300, 1e300 };
+  for (int repeat = 0; repeat < 3; ++repeat)
+  {
+    for (int k = 0; k < 2; ++k)
+    {
+      log.clear();
+      RunCommand(pss + " project " + base + formats[k] + " --start " + start + " --h 1 --verbose --no-progress -o " +
+          base + "-out.csv",
+        log);
+      const std::size_t at = log.find("pss: read");
+      double seconds = 0.0;
+      if (at != std::string::npos && std::sscanf(log.c_str() + at, "pss: read %lf s", &seconds) == 1)
+      {
+        best[k] = std::min(best[k], seconds);
+      }
+    }
+  }
+  for (int k = 0; k < 2; ++k)
+  {
+    struct stat info{};
+    stat((base + formats[k]).c_str(), &info);
+    std::printf("%-34s %9zu %11.0f   read %.2f s (best of 3), file %.0f MiB\n",
+      (std::string("read ") + std::to_string(n / 1000000) + "m " + (formats[k] + 1)).c_str(), n,
+      static_cast<double>(n) / best[k], best[k], static_cast<double>(info.st_size) / (1024.0 * 1024.0));
+    std::remove((base + formats[k]).c_str());
+  }
+  std::remove(start.c_str());
+  std::remove((base + "-out.csv").c_str());
+  std::fflush(stdout);
+}
 #endif
 
 } // namespace
@@ -656,6 +717,10 @@ int main(int argc, char** argv)
     {
       WholeProcessRow(name, millions * 1000000);
     }
+  }
+  if (!quick && wanted("read 10m pcd vtp"))
+  {
+    ReadRow(10000000);
   }
 #endif
   std::printf("\nitems/s: projected points (or grid samples) per second of wall time; iters: mean iterations;\n"

@@ -15,7 +15,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pss_pcd
@@ -58,11 +60,41 @@ struct Header
   bool organized() const { return this->height > 1; }
 };
 
+/// An allocator that leaves new bytes uninitialized: a body of hundreds of megabytes is written
+/// over at once (decompressed or copied into), so zeroing it first would only cost time.
+template <typename T>
+struct UninitializedAllocator : std::allocator<T>
+{
+  template <typename U>
+  struct rebind
+  {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <typename U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept
+  {
+  }
+  template <typename U>
+  void construct(U* p) noexcept
+  {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args)
+  {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+/// Bytes of a body.
+using Bytes = std::vector<unsigned char, UninitializedAllocator<unsigned char>>;
+
 /// The body as columns: field f's values for every point, contiguous (points x count elements of
 /// its size, in the file's little-endian byte order), at bytes[start[f]].
 struct Columns
 {
-  std::vector<unsigned char> bytes;
+  Bytes bytes;
   std::vector<std::size_t> start;
 };
 

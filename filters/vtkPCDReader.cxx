@@ -16,9 +16,13 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
+#include "vtkTypeInt32Array.h"
+#include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -87,6 +91,49 @@ struct Source
   }
 };
 
+// Calls @p body(begin, end) over [0, n) in parallel chunks (vtkSMPTools): the copies of a large
+// cloud are bound by memory and first-touch page faults, which two threads take apart.
+template <typename Body>
+void ForRange(std::size_t n, Body&& body)
+{
+  vtkSMPTools::For(0, static_cast<vtkIdType>(n), 1 << 16, [&body](vtkIdType begin, vtkIdType end) {
+    body(static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
+  });
+}
+
+// Copies, for every kept row j, @p Size bytes from in + row(j) * inStride to out + j * outStride; a
+// memcpy of a constant size is a single move, so each element size gets its own loop.
+template <std::size_t Size>
+void GatherFixed(const Source& source, const unsigned char* in, std::size_t inStride, unsigned char* out,
+  std::size_t outStride)
+{
+  ForRange(source.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t j = begin; j < end; ++j)
+    {
+      std::memcpy(out + j * outStride, in + source.row(j) * inStride, Size);
+    }
+  });
+}
+
+void Gather(const Source& source, std::size_t size, const unsigned char* in, std::size_t inStride, unsigned char* out,
+  std::size_t outStride)
+{
+  switch (size)
+  {
+    case 1: GatherFixed<1>(source, in, inStride, out, outStride); return;
+    case 2: GatherFixed<2>(source, in, inStride, out, outStride); return;
+    case 4: GatherFixed<4>(source, in, inStride, out, outStride); return;
+    case 8: GatherFixed<8>(source, in, inStride, out, outStride); return;
+    default:
+      ForRange(source.size(), [&](std::size_t begin, std::size_t end) {
+        for (std::size_t j = begin; j < end; ++j)
+        {
+          std::memcpy(out + j * outStride, in + source.row(j) * inStride, size);
+        }
+      });
+  }
+}
+
 // A point array holding field @p f's kept rows, bit for bit.
 vtkSmartPointer<vtkDataArray> FieldArray(const Source& source, std::size_t f)
 {
@@ -100,13 +147,12 @@ vtkSmartPointer<vtkDataArray> FieldArray(const Source& source, std::size_t f)
   const unsigned char* in = source.column(f);
   if (source.all)
   {
-    std::memcpy(out, in, source.size() * width);
+    ForRange(source.size(), [&](std::size_t begin, std::size_t end) {
+      std::memcpy(out + begin * width, in + begin * width, (end - begin) * width);
+    });
     return array;
   }
-  for (std::size_t j = 0; j < source.size(); ++j)
-  {
-    std::memcpy(out + j * width, in + source.row(j) * width, width);
-  }
+  Gather(source, width, in, width, out, width);
   return array;
 }
 
@@ -148,11 +194,7 @@ vtkSmartPointer<vtkDataArray> TripleArray(const Source& source, const std::size_
   const std::size_t size = field.size;
   for (int c = 0; c < 3; ++c)
   {
-    const unsigned char* in = source.column(f[c]);
-    for (std::size_t j = 0; j < source.size(); ++j)
-    {
-      std::memcpy(out + (3 * j + c) * size, in + source.row(j) * size, size);
-    }
+    Gather(source, size, source.column(f[c]), size, out + c * size, 3 * size);
   }
   return array;
 }
@@ -193,11 +235,13 @@ bool FindTriple(const pss_pcd::Header& header, const char* const names[3], std::
 vtkSmartPointer<vtkPoints> MakePoints(const Source& source, const std::size_t xyz[3])
 {
   const auto& fields = source.cloud.header.fields;
-  const bool asFloat = fields[xyz[0]].type == 'F' && fields[xyz[0]].size == 4 &&
-    fields[xyz[1]].type == 'F' && fields[xyz[1]].size == 4 && fields[xyz[2]].type == 'F' && fields[xyz[2]].size == 4;
+  const Field& x = fields[xyz[0]];
+  const bool sameFloats = x.type == 'F' && fields[xyz[1]].type == 'F' && fields[xyz[2]].type == 'F' &&
+    fields[xyz[1]].size == x.size && fields[xyz[2]].size == x.size;
   auto points = vtkSmartPointer<vtkPoints>::New();
-  if (asFloat)
+  if (sameFloats)
   {
+    // Float or double coordinates are kept bit for bit.
     points->SetData(TripleArray(source, xyz, "Points"));
     return points;
   }
@@ -216,21 +260,55 @@ vtkSmartPointer<vtkPoints> MakePoints(const Source& source, const std::size_t xy
   return points;
 }
 
-vtkSmartPointer<vtkCellArray> Vertices(vtkIdType n)
+// Clears finite[i] where element i of a coordinate column is NaN or infinite (integers never are).
+template <typename T>
+void MarkNonFiniteTyped(const unsigned char* column, std::vector<unsigned char>& finite)
 {
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
+  ForRange(finite.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      T value;
+      std::memcpy(&value, column + i * sizeof(T), sizeof(T));
+      finite[i] &= static_cast<unsigned char>(std::isfinite(value));
+    }
+  });
+}
+
+void MarkNonFinite(const Field& field, const unsigned char* column, std::vector<unsigned char>& finite)
+{
+  if (field.type == 'F')
+  {
+    field.size == 4 ? MarkNonFiniteTyped<float>(column, finite) : MarkNonFiniteTyped<double>(column, finite);
+  }
+}
+
+// One vertex cell per point; 32-bit offsets while they fit (half the memory of VTK's default).
+template <typename ArrayT>
+vtkSmartPointer<vtkCellArray> VerticesOf(vtkIdType n)
+{
+  vtkNew<ArrayT> offsets;
+  vtkNew<ArrayT> connectivity;
   offsets->SetNumberOfValues(n + 1);
   connectivity->SetNumberOfValues(n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    offsets->SetValue(i, i);
-    connectivity->SetValue(i, i);
-  }
-  offsets->SetValue(n, n);
+  auto* o = offsets->GetPointer(0);
+  auto* c = connectivity->GetPointer(0);
+  using Value = typename ArrayT::ValueType;
+  ForRange(static_cast<std::size_t>(n), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      o[i] = static_cast<Value>(i);
+      c[i] = static_cast<Value>(i);
+    }
+  });
+  o[n] = static_cast<Value>(n);
   auto cells = vtkSmartPointer<vtkCellArray>::New();
   cells->SetData(offsets, connectivity);
   return cells;
+}
+
+vtkSmartPointer<vtkCellArray> Vertices(vtkIdType n)
+{
+  return n < VTK_INT_MAX ? VerticesOf<vtkTypeInt32Array>(n) : VerticesOf<vtkTypeInt64Array>(n);
 }
 
 template <typename ArrayT, typename T>
@@ -325,32 +403,33 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   if (this->SkipNaNPoints && header.points > 0)
   {
     const std::size_t n = static_cast<std::size_t>(header.points);
-    std::vector<std::size_t> rows;
-    rows.reserve(n);
-    for (std::size_t i = 0; i < n; ++i)
+    std::vector<unsigned char> finite(n, 1);
+    for (int c = 0; c < 3; ++c)
     {
-      bool finite = true;
-      for (int c = 0; c < 3; ++c)
-      {
-        const Field& field = header.fields[xyz[c]];
-        finite = finite && std::isfinite(Element(field, source.column(xyz[c]) + i * field.size));
-      }
-      if (finite)
-      {
-        rows.push_back(i);
-      }
+      MarkNonFinite(header.fields[xyz[c]], source.column(xyz[c]), finite);
     }
-    if (rows.size() < n)
+    const std::size_t kept = static_cast<std::size_t>(std::count(finite.begin(), finite.end(), 1));
+    if (kept < n)
     {
-      source.rows = std::move(rows);
+      source.rows.reserve(kept);
+      for (std::size_t i = 0; i < n; ++i)
+      {
+        if (finite[i])
+        {
+          source.rows.push_back(i);
+        }
+      }
       source.all = false;
-      this->NumberOfSkippedPoints = static_cast<vtkIdType>(n - source.rows.size());
+      this->NumberOfSkippedPoints = static_cast<vtkIdType>(n - kept);
     }
   }
 
   const vtkIdType kept = static_cast<vtkIdType>(source.size());
   output->SetPoints(MakePoints(source, xyz));
-  output->SetVerts(Vertices(kept));
+  if (this->GenerateVertices)
+  {
+    output->SetVerts(Vertices(kept));
+  }
   vtkPointData* pointData = output->GetPointData();
 
   // Arrays in the order of the fields, so that a file written from the output has the same order.
@@ -414,6 +493,7 @@ void vtkPCDReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "SkipNaNPoints: " << (this->SkipNaNPoints ? "On" : "Off") << "\n";
+  os << indent << "GenerateVertices: " << (this->GenerateVertices ? "On" : "Off") << "\n";
   os << indent << "NumberOfSkippedPoints: " << this->NumberOfSkippedPoints << "\n";
   os << indent << "NumberOfPointsInFile: " << this->NumberOfPointsInFile << "\n";
 }

@@ -58,6 +58,17 @@ public:
   vtkBooleanMacro(SkipNaNPoints, bool);
   ///@}
 
+  ///@{
+  /**
+   * Give the output one vertex cell per point, as VTK's point-cloud readers do. Default on. Off
+   * saves 8 to 16 bytes a point for consumers that read points and point data only (the filters
+   * of this module, the pss tool).
+   */
+  vtkSetMacro(GenerateVertices, bool);
+  vtkGetMacro(GenerateVertices, bool);
+  vtkBooleanMacro(GenerateVertices, bool);
+  ///@}
+
   /// Points left out by the last update (0 with SkipNaNPoints off).
   vtkGetMacro(NumberOfSkippedPoints, vtkIdType);
 
@@ -75,6 +86,7 @@ protected:
 
   char* FileName = nullptr;
   bool SkipNaNPoints = true;
+  bool GenerateVertices = true;
   vtkIdType NumberOfSkippedPoints = 0;
   vtkIdType NumberOfPointsInFile = 0;
 

@@ -55,6 +55,7 @@ vtkSmartPointer<vtkPolyData> ReadPcd(const std::string& path)
   vtkNew<vtkPCDReader> reader;
   const ErrorCatcher errors(reader);
   reader->SetFileName(path.c_str());
+  reader->GenerateVerticesOff(); // the tool reads points and point data only
   reader->Update();
   if (!errors.message.empty())
   {
