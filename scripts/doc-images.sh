@@ -4,8 +4,9 @@
 #   scripts/doc-images.sh
 #
 # Runs the main demo (pss-paper-figures, whose figures examples/pvpython/render_paper_figures.py
-# renders in pvbatch under xvfb-run), then the ParaView examples figure9_10_scene.py and
-# bunny_mesh.py with the plugin, all into BUILD/doc-images, and copies into docs/images exactly the
+# renders in pvbatch under xvfb-run), then the ParaView examples figure9_10_scene.py,
+# bunny_mesh.py and real_frame_mesh.py (two frames of ../shared/data/real-scans, when present) with
+# the plugin, all into BUILD/doc-images, and copies into docs/images exactly the
 # images that README.md and docs/*.md show; an image there that no page shows is removed. Fails
 # when a page shows an image that none of these programs made. Commit docs/images afterwards.
 # Environment: PSS_BUILD_DIR (default build/), PSS_DOC_IMAGES_DIR (where the programs write,
@@ -38,6 +39,17 @@ xvfb-run -a pvbatch "$root/examples/pvpython/figure9_10_scene.py" --plugin "$plu
 echo "doc-images.sh: the bunny mesh in ParaView"
 xvfb-run -a pvbatch "$root/examples/pvpython/bunny_mesh.py" --plugin "$plugin" --size 960x480 \
   --output "$out/bunny_mesh.png"
+scans="${PSS_SHARED_DATA_DIR:-$root/../shared/data}/real-scans"
+real_frames=(test9 region_growing_rgb_tutorial)
+if [ -f "$scans/test9.pcd" ]; then
+  echo "doc-images.sh: real depth-camera frames meshed in ParaView"
+  for frame in "${real_frames[@]}"; do
+    xvfb-run -a pvbatch "$root/examples/pvpython/real_frame_mesh.py" --plugin "$plugin" --size 1600x640 \
+      --frame "$scans/$frame.pcd" --output "$out/real_frame_${frame%_rgb_tutorial}.png"
+  done
+else
+  echo "doc-images.sh: no $scans: the real frames' images keep their committed copies"
+fi
 
 # The images the pages show: every ](...images/NAME.png) of README.md and docs/*.md.
 mapfile -t shown < <(grep -ohE '\]\((docs/)?images/[A-Za-z0-9_.-]+\.png' "$root/README.md" "$root"/docs/*.md \
@@ -50,6 +62,9 @@ for name in "${shown[@]}"; do
       made="$candidate"
     fi
   done
+  if [ -z "$made" ] && [[ "$name" == real_frame_* ]] && [ ! -f "$scans/test9.pcd" ]; then
+    continue # made from the shared data, which is not here
+  fi
   if [ -z "$made" ]; then
     echo "doc-images.sh: a page shows images/$name, which no program here made" >&2
     exit 1
