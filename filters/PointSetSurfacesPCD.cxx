@@ -129,6 +129,15 @@ void CheckFields(Header& header, const HeaderLines& lines)
   {
     Field field;
     field.name = std::string(lines.fields[f]);
+    for (const char c : field.name)
+    {
+      // A control character (NUL above all, which would cut the array's name short) is corruption.
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      {
+        Fail("field " + std::to_string(f + 1) + ": its name has a control character (byte " +
+          std::to_string(static_cast<int>(static_cast<unsigned char>(c))) + ")");
+      }
+    }
     const std::string label = "field '" + field.name + "': ";
     const std::string_view size = lines.sizes[f];
     if (size != "1" && size != "2" && size != "4" && size != "8")

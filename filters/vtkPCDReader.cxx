@@ -87,6 +87,11 @@ struct Source
   std::size_t row(std::size_t j) const { return this->all ? j : this->rows[j]; }
   const unsigned char* column(std::size_t f) const
   {
+    // An empty body has no memory to point into (and no offset to add to it).
+    if (this->cloud.columns.bytes.empty())
+    {
+      return nullptr;
+    }
     return this->cloud.columns.bytes.data() + this->cloud.columns.start[f];
   }
 };
@@ -118,6 +123,10 @@ void GatherFixed(const Source& source, const unsigned char* in, std::size_t inSt
 void Gather(const Source& source, std::size_t size, const unsigned char* in, std::size_t inStride, unsigned char* out,
   std::size_t outStride)
 {
+  if (source.size() == 0)
+  {
+    return;
+  }
   switch (size)
   {
     case 1: GatherFixed<1>(source, in, inStride, out, outStride); return;
@@ -192,7 +201,7 @@ vtkSmartPointer<vtkDataArray> TripleArray(const Source& source, const std::size_
   array->SetNumberOfTuples(static_cast<vtkIdType>(source.size()));
   auto* out = static_cast<unsigned char*>(array->GetVoidPointer(0));
   const std::size_t size = field.size;
-  for (int c = 0; c < 3; ++c)
+  for (int c = 0; source.size() > 0 && c < 3; ++c)
   {
     Gather(source, size, source.column(f[c]), size, out + c * size, 3 * size);
   }

@@ -95,6 +95,8 @@ TEST(PCDBadInput, FieldsWhoseSizesDoNotAddUp)
   ExpectError("count-0", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 0\n" + tail, "COUNT 0 is outside");
   ExpectError("no-fields", "VERSION 0.7\n" + tail, "no FIELDS line");
   ExpectError("twice", "FIELDS x y x\nSIZE 4 4 4\nTYPE F F F\n" + tail, "the field 'x' appears twice");
+  ExpectError("nul-in-name", std::string("FIELDS x y z n\0m\nSIZE 4 4 4 4\nTYPE F F F F\n", 43) + tail,
+    "field 4: its name has a control character (byte 0)");
   ExpectError("no-z", "FIELDS x y w\nSIZE 4 4 4\nTYPE F F F\n" + tail, "no single-element field 'z'");
   ExpectError("keyword-twice", kXyzFields + "WIDTH 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3\n",
     "WIDTH appears twice");
