@@ -554,11 +554,11 @@ int main(int argc, char** argv)
     }
   }
 
-  // The integral and delta definitions on a dense patch (the 4,000 points nearest to point
-  // 100,000, on the bunny's flank), as a whole-cloud projection or a mesh visits them: exact, and
-  // from the delta lattice at its default spacing (issue 15), the lattice rows followed by their
-  // deviation from the exact path. Also on the 200 spread starts, where each projection builds its
-  // own lattice nodes.
+  // The integral and delta definitions on a dense patch (the 4,000 points nearest to point 100,000,
+  // on the bunny's flank), as a whole-cloud projection or a mesh visits them: exact, and from the
+  // delta lattice at its default spacing (docs/paper.md, "Reading: the integral energy's fast
+  // path"), the lattice rows followed by their deviation from the exact path. Also on the 200
+  // spread starts, where each projection builds its own lattice nodes.
   for (pss::Variant variant : { pss::Variant::Integral, pss::Variant::Delta })
   {
     for (pss::Procedure procedure : procedures)

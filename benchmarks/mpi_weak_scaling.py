@@ -1,4 +1,4 @@
-"""Points/s per rank of the distributed projection (issue 16's weak-scaling measurement).
+"""Points/s per rank of the distributed projection (the weak scaling of docs/distributed.md).
 
     mpiexec -np N pvbatch --symmetric benchmarks/mpi_weak_scaling.py --plugin PointSetSurfaces.so
         --bunny ../shared/data/stanford-bunny/bunny_scans_merged.ply --workdir DIR --mode weak|split

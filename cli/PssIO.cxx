@@ -3,6 +3,7 @@
 #include "PssIO.h"
 
 #include "io/Mesh.h"
+#include "io/Pcd.h"
 #include "io/Ply.h"
 #include "io/Table.h"
 #include "io/Text.h"
@@ -81,7 +82,9 @@ vtkSmartPointer<vtkDataSet> ReadDataSet(const std::string& path)
     return io::ReadTable(path, false);
   if (ext == ".ply")
     return io::ReadPly(path);
-  throw std::runtime_error("unknown input format '" + ext + "' of " + path + " (use .vtp .vtu .vti .ply .csv .xyz)");
+  if (ext == ".pcd")
+    return io::ReadPcd(path);
+  throw std::runtime_error("unknown input format '" + ext + "' of " + path + " (use .vtp .vtu .vti .ply .pcd .csv .xyz)");
 }
 
 void WriteDataSet(vtkDataSet* data, const std::string& path, Compression compression)
@@ -111,6 +114,15 @@ void WriteDataSet(vtkDataSet* data, const std::string& path, Compression compres
   {
     io::WritePly(AsPolyData(data), path);
   }
+  else if (ext == ".pcd")
+  {
+    auto* pointSet = vtkPointSet::SafeDownCast(data);
+    if (!pointSet)
+    {
+      throw std::runtime_error("only point sets can be written as .pcd; write image data as .vti");
+    }
+    io::WritePcd(pointSet, path, compression != Compression::None);
+  }
   else if (ext == ".stl" || ext == ".obj")
   {
     io::WriteMesh(AsPolyData(data), path, ext);
@@ -126,7 +138,7 @@ void WriteDataSet(vtkDataSet* data, const std::string& path, Compression compres
   else
   {
     throw std::runtime_error(
-      "unknown output format '" + ext + "' of " + path + " (use .vtp .vtu .vti .ply .stl .obj .csv .xyz)");
+      "unknown output format '" + ext + "' of " + path + " (use .vtp .vtu .vti .ply .pcd .stl .obj .csv .xyz)");
   }
 }
 

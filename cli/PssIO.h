@@ -9,6 +9,7 @@
  * | .vtu | vtkUnstructuredGrid (XML) | any vtkDataSet |
  * | .vti | vtkImageData (XML) | vtkImageData |
  * | .ply | vtkPolyData (points, faces ignored by the filters) | vtkPolyData (points + point arrays dropped) |
+ * | .pcd | vtkPolyData of the finite points and every field (vtkPCDReader) | points and numeric point arrays, binary_compressed (binary with --compression none) |
  * | .csv | points from columns x,y[,z] after a header; other numeric columns become arrays | points and every point array, one column per component |
  * | .xyz | whitespace-separated x y [z] per line (# comments) | x y z per line |
  */

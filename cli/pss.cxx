@@ -102,7 +102,7 @@ void AddCommonOptions(OptionTable& t, Run& run)
     if (run.threads < 0)
       throw UsageError{ "--threads must be >= 0" };
   });
-  t.Value("compression", "NAME", "lz4 | zlib | none, for .vtp .vtu .vti output (default lz4)", [&](const std::string& v) {
+  t.Value("compression", "NAME", "lz4 | zlib | none, for .vtp .vtu .vti output (default lz4); none also writes .pcd as binary, not binary_compressed", [&](const std::string& v) {
     run.compression = static_cast<pss_cli::Compression>(pss_cli::ToChoice("compression", v, { "lz4", "zlib", "none" }));
   });
   t.Switch("verbose", "print the wall time of each stage (read, index, compute, write), the peak memory and a summary",
@@ -643,7 +643,7 @@ const char* const MainHelp = "usage: pss SUBCOMMAND [options]   (pss SUBCOMMAND 
                              "  mesh       the surface as triangles (polylines in 2D), only where it is defined\n"
                              "  version    the versions of pss and VTK and the vector kernels in use (also --version)\n"
                              "\n"
-                             "Files are read and written by extension: .vtp .vtu .vti .ply .csv .xyz (.stl .obj: written only)\n";
+                             "Files are read and written by extension: .vtp .vtu .vti .ply .pcd .csv .xyz (.stl .obj: written only)\n";
 
 // `pss --version`: what a bug report needs to say which build ran, including the copy of the
 // vector kernels the dispatcher chose on this CPU (PSS_SIMD=baseline forces the baseline one).

@@ -35,11 +35,16 @@ vtk_module_wrap_python(
   INSTALL_HEADERS OFF
   BUILD_STATIC OFF)
 
-# The package: its __init__.py re-exports the wrapped classes.
+# The package's own Python files: __init__.py re-exports the wrapped classes and the numpy
+# functions of _numpy_api.py. Copied next to the wrapped module in the build tree (configure_file
+# copies again when a file changes) and installed beside it.
 set(pss_python_package_dir "${PROJECT_BINARY_DIR}/${PSS_PYTHON_DESTINATION}/pointsetsurfaces")
-configure_file("${PROJECT_SOURCE_DIR}/filters/python/__init__.py" "${pss_python_package_dir}/__init__.py" COPYONLY)
-install(FILES "${pss_python_package_dir}/__init__.py"
-  DESTINATION "${PSS_PYTHON_DESTINATION}/pointsetsurfaces" COMPONENT python)
+foreach(pss_python_file __init__.py _numpy_api.py)
+  configure_file("${PROJECT_SOURCE_DIR}/filters/python/${pss_python_file}" "${pss_python_package_dir}/${pss_python_file}"
+    COPYONLY)
+  install(FILES "${pss_python_package_dir}/${pss_python_file}"
+    DESTINATION "${PSS_PYTHON_DESTINATION}/pointsetsurfaces" COMPONENT python)
+endforeach()
 
 set(PSS_PYTHON_WRAPPED ON)
 set(PSS_PYTHONPATH "${PROJECT_BINARY_DIR}/${PSS_PYTHON_DESTINATION}")

@@ -8,6 +8,7 @@
 #   install    tests/install: cmake --install, a downstream find_package project, the installed plugin
 #   python     tests/python: the pointsetsurfaces package in python3 and pvpython (examples/python)
 #   portable   tests/portable: no AVX outside the dispatched kernels; the suites on the baseline kernels
+#   docs       tests/docs: the documentation's rules (check_docs.py) and the Doxygen API reference
 #   bunny      added to a test of any stage above that reads the 362,272-point Stanford bunny; a
 #              GoogleTest case is one when its name contains "StanfordBunny"
 #   sanitizer  the ASan+UBSan and TSan copies (tests/RunSanitized.cmake)
@@ -26,7 +27,7 @@
 include_guard(GLOBAL)
 include(GoogleTest)
 
-set(PSS_TEST_STAGES unit pipeline cli paper paraview install python portable bunny sanitizer fuzz clang)
+set(PSS_TEST_STAGES unit pipeline cli paper paraview install python portable docs bunny sanitizer fuzz clang)
 # The regular expression (on "Suite.Name") and the gtest filter that pick the bunny's cases.
 set(PSS_BUNNY_GTEST_REGEX "StanfordBunny")
 set(PSS_BUNNY_GTEST_FILTER "*StanfordBunny*")

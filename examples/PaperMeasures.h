@@ -51,10 +51,11 @@ double PerpendicularPlaneWinsHeight(const Scene& line, int variant, double x, do
 /// The analytic crossing height over a dense line, in h: 1 / sqrt 2.
 constexpr double kPlaneCrossingTruth = 0.70710678118654752;
 /// Acceptance: the measured crossing lies within this distance (in h) of the truth. What moves it:
-/// the refinement step (1e-4 h) and the kernel's cut-off at 3 h (README, reading 3), which drops
-/// about 4e-4 of the perpendicular plane's energy and so lowers the crossing by about 1.5e-4 h
-/// (measured 0.7070 h at every column). The discrete sum over 401 points 0.1 h apart equals the
-/// integral to far better than that (relative error of order exp(-pi^2 h^2 / spacing^2)).
+/// the refinement step (1e-4 h) and the kernel's cut-off at 3 h (docs/paper.md, "Reading: the
+/// kernel's cut-off"), which drops about 4e-4 of the perpendicular plane's energy and so lowers the
+/// crossing by about 1.5e-4 h (measured 0.7070 h at every column). The discrete sum over 401 points
+/// 0.1 h apart equals the integral to far better than that (relative error of order exp(-pi^2 h^2 /
+/// spacing^2)).
 constexpr double kPlaneCrossingTolerance = 1e-3;
 ///@}
 
@@ -119,7 +120,7 @@ struct BandMeasure
 /// Samples n of @p variant along NoisyBandPaths with vtkPointSetSurfaceFieldSampler and reduces it.
 BandMeasure MeasureNoisyBand(const Scene& noisy, int variant);
 
-/// Acceptance bounds of Figure 8 (measured, stated in the README; see the tests).
+/// Acceptance bounds of Figure 8 (measured, stated in docs/paper.md; see the tests).
 /// n_MLS's median turn lies in the band's outer part: between these multiples of sigma.
 constexpr double kLevinTurnLowSigmas = 1.0;
 constexpr double kLevinTurnHighSigmas = kBandSigmas;

@@ -7,9 +7,10 @@
  * of a Point Set Surface" (LevinMLS, NormalizedMLS, CenterOfMass, Integral, Delta), the Gaussian
  * scale h, the dimension of the cloud and the numerical settings of the kernel. The filters
  * (vtkPointSetSurfaceProjection, vtkPointSetSurfaceDomainClassifier,
- * vtkPointSetSurfaceFieldSampler, vtkPointSetSurfaceEnergyGlyphs) and the implicit function
- * vtkPointSetSurfaceImplicitFunction each hold one (GetSurface()), so a pipeline can share a single
- * description among them, the way vtkPointInterpolator shares an interpolation kernel.
+ * vtkPointSetSurfaceFieldSampler, vtkPointSetSurfaceEnergyGlyphs, vtkPointSetSurfaceMesher) and
+ * the implicit function vtkPointSetSurfaceImplicitFunction each hold one (GetSurface()), so a
+ * pipeline can share a single description among them, the way vtkPointInterpolator shares an
+ * interpolation kernel. The definitions and their equations: docs/paper.md.
  *
  * Prepare() builds the k-d tree and the surface definition for a cloud and caches them until the
  * cloud or a parameter changes. Points with NaN or infinite coordinates are left out of the index
@@ -136,14 +137,14 @@ public:
 
   ///@{
   /**
-   * Spacing, in units of h, of the lattice from which the Integral and Delta definitions read
-   * delta at e_I's quadrature nodes: delta, its gradient and Hessian are computed exactly at the
+   * Spacing, in units of h, of the lattice from which the Integral and Delta definitions read delta
+   * at e_I's quadrature nodes: delta, its gradient and Hessian are computed exactly at the
    * lattice's nodes and interpolated (tricubic Hermite) between them (pss/DeltaLattice.h). 0
    * evaluates delta exactly at every node and takes the stability's e_perp from the full rule
-   * throughout (README, reading 11): the reference, about 20 times slower on a cloud's own points
-   * (measured on the bunny scans), but about 1.5 times faster for a few isolated start points.
-   * Default 0.5 (on the bunny scans every end point within 6e-4 h of the exact path's;
-   * README, reading 11, for the synthetic scenes). Within [0, 1]; values in (0, 0.05) are refused
+   * throughout: the reference, about 20 times slower on a cloud's own points (measured on the bunny
+   * scans), but about 1.5 times faster for a few isolated start points. Default 0.5 (on the bunny
+   * scans every end point within 6e-4 h of the exact path's; docs/paper.md, "Reading: the integral
+   * energy's fast path", for the synthetic scenes). Within [0, 1]; values in (0, 0.05) are refused
    * by Prepare.
    */
   vtkSetClampMacro(DeltaLatticeSpacing, double, 0.0, 1.0);

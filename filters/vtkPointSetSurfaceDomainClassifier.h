@@ -5,35 +5,28 @@
  *
  * A vtkPointSetSurfaceProjection that also labels every start point by what became of its
  * projection (pss::classifyStart). Ports, surface parameters, projection settings and the
- * projection's output arrays (`Normal`, `Energy`, `Displacement`, `Iterations`, `Converged`,
- * `Stability`, `ExtremumType`, `StopReason`, and output 1 with GenerateProjectionLines) are those
- * of the superclass; each point is projected once, and the label is read off that projection.
+ * projection's output arrays are those of the superclass; each point is projected once, and the
+ * label is read off that projection.
  *
  * `DomainLabel` (the active scalars):
  * - 0 InDomain: the projection converged to a fixed point within MaxDistance * h of the cloud
  *   whose n agrees, within MaxNormalAngle degrees, with the cloud's own normal there;
- * - 1 Spurious: it converged, but to a fixed point farther than MaxDistance * h from every cloud
- *   point, or whose n is more than MaxNormalAngle degrees off the cloud's normal: a spurious
- *   component of the surface (Figures 6 and 9), so the start point lies outside the domain;
+ * - 1 Spurious: it converged, but too far from every cloud point or with n too far off the
+ *   cloud's normal: a spurious component of the surface (Figures 6 and 9);
  * - 2 Undefined: n was not well defined along the way (StopReason 2), or the start point had a
  *   NaN or infinite coordinate (StopReason 4);
  * - 3 NotConverged: the iteration limit was reached (StopReason 1), or no extremum of e was found
  *   along the line of n (StopReason 3).
- * The cloud's normal at a fixed point f is the centre-of-mass normal (weighted total-least-squares
- * plane) at the cloud point nearest to f: it depends on the cloud only, whatever Variant is being
- * classified.
+ * The cloud's normal at a fixed point is the centre-of-mass normal at the cloud point nearest to
+ * it: it depends on the cloud only, whatever Variant is being classified.
  *
  * The evidence behind each label, so the thresholds can be checked or changed afterwards:
- * - `DistanceToCloud`: from the fixed point to the nearest cloud point (absolute units);
- * - `NormalAngle`: degrees in [0, 90], n at the fixed point vs the cloud's normal there;
- * - `StartAngle`: degrees in [0, 90], n at the start point vs n at the fixed point (how far n
- *   turned on the way: large values mean the start point was where n points elsewhere);
- * - `StartStability`: stability of n at the start point (0 for NaN/Inf start points).
- * `DistanceToCloud`, `NormalAngle` and `StartAngle` describe a fixed point, so they are NaN exactly
- * where there is none: DomainLabel 2 or 3.
+ * `DistanceToCloud` (from the fixed point to the nearest cloud point), `NormalAngle` (degrees,
+ * n at the fixed point against the cloud's normal there), `StartAngle` (degrees, n at the start
+ * against n at the fixed point), `StartStability`. The first three are NaN exactly where there is
+ * no fixed point (DomainLabel 2 or 3).
  *
- * Runs distributed under MPI as the projection does (see vtkPointSetSurfaceProjection): labels
- * and evidence equal to the one-process run, output with `GlobalPointIds`.
+ * Runs distributed under MPI as the projection does. See docs/vtk-filters.md.
  *
  * @sa vtkPointSetSurfaceProjection vtkPointSetSurface
  */

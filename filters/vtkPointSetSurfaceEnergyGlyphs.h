@@ -6,49 +6,28 @@
  *
  * Input 0 is the point cloud that defines the surface (any vtkPointSet); input 1, optional, holds
  * the sample points x (without it every cloud point is a sample: give sample points for large
- * clouds). Which surface definition, at which scale, is GetSurface()'s business, as for
- * vtkPointSetSurfaceProjection.
+ * clouds). Which surface definition, at which scale, is GetSurface()'s business.
  *
  * Output 0, the energy glyphs: for each sample x, the points x + c e(x, a) a over unit directions
- * a, where e is the energy of the surface definition.
- * - 2D: Resolution directions a_k = (cos 2 pi k/R, sin 2 pi k/R, 0) on the full circle, joined into
- *   one closed polyline (R + 1 point ids, the last repeating the first).
- * - 3D: a latitude-longitude sphere of directions with Resolution longitude segments and
- *   max(2, Resolution/2) latitude bands (2 + (bands - 1) * Resolution directions, poles included),
- *   triangulated with outward orientation.
- * Since a is unoriented, e(x, a) = e(x, -a): with an even Resolution, both a and -a are sampled
- * and each glyph is centrally symmetric about x. The narrowest direction of a glyph is n(x): a
- * dumbbell means a strong choice of n, an ellipse a weaker one, a circle or square an unstable
- * one (Figure 4).
+ * a: in 2D Resolution directions on the circle, one closed polyline; in 3D a latitude-longitude
+ * sphere of directions with Resolution longitude segments and max(2, Resolution/2) latitude bands,
+ * triangulated with outward orientation. The narrowest direction of a glyph is n(x): a dumbbell
+ * means a strong choice of n, an ellipse a weaker one, a circle or square an unstable one
+ * (Figure 4).
  *
- * The constant c (ScaleMode):
- * - SCALE_GLOBAL (default): c = GlyphSize * h / (largest e over all samples and directions), fixed
- *   within the output, as in the paper ("c remains fixed within each image"): glyph sizes compare
- *   energies between samples. Where Levin's energy underflows (far from the cloud) the glyphs
- *   collapse onto their sample points: that is the paper's point about it. GetGlyphScale() is c.
- * - SCALE_PER_GLYPH: each glyph is normalized on its own, its widest direction reaching
- *   GlyphSize * h: shapes compare, sizes do not. Computed from the core's scaled energies
- *   (pss::LineSample), so it stays exact where the true energies underflow to 0.
+ * The constant c (ScaleMode): SCALE_GLOBAL (default) fixes c = GlyphSize * h / (largest e) within
+ * the output, as in the paper, so glyph sizes compare energies (GetGlyphScale() is c);
+ * SCALE_PER_GLYPH normalizes each glyph so that its widest direction reaches GlyphSize * h, so
+ * shapes compare (exact even where the true energies underflow to 0).
  *
- * Output 1, the best fit at each sample: the line segment (2D) or square plane patch (3D) through
- * x normal to n(x), of half-length (half side) SegmentLength * h: the best-fitting line of
- * Figure 5. Samples where n(x) is not a finite non-zero vector get no segment; a defined-but-weak
- * n is flagged by its Stability.
+ * Output 1, the best fit at each sample: the line segment (2D) or square patch (3D) through x
+ * normal to n(x), of half-length SegmentLength * h (Figure 5); none where n(x) is undefined.
  *
  * Arrays: `Energy` on glyph points (e(x, a) at its true scale; may underflow to 0, never NaN);
- * `SampleId` (index of the sample in input 1, or in the cloud) and `Stability` (of n(x)) on the
- * cells of both outputs; `Normal` (n(x), oriented away from the cloud's centroid) on the cells of
- * output 1. Sample points with NaN or infinite coordinates get no glyph and no segment (a warning
- * counts them); an empty set of samples gives empty outputs; an empty cloud is an error. For a 2D
- * cloud every sample is taken in the xy-plane (z = 0), as by every query of the core.
- *
- * Distributed runs (MPI, a global controller of several processes): every rank plots its own
- * samples (its piece of input 1, or of the cloud) on the cloud gathered from every rank, with
- * SampleId counted over the ranks' pieces in rank order and SCALE_GLOBAL's c taken over every
- * rank's energies, so that the ranks' outputs together are the one-process output. With
- * GhostMargin > 0 each rank holds only its own cloud points and ghost points around its samples
- * (see vtkPointSetSurfaceProjection); the outputs are then bitwise the one-process output with
- * the same GhostMargin.
+ * `SampleId` and `Stability` on the cells of both outputs; `Normal` (n(x), oriented away from the
+ * cloud's centroid) on the cells of output 1. Sample points with NaN or infinite coordinates get
+ * no glyph and no segment (a warning counts them); an empty cloud is an error. Runs distributed
+ * under MPI, each rank plotting its own samples. See docs/vtk-filters.md.
  *
  * @sa vtkPointSetSurface vtkPointSetSurfaceProjection
  */

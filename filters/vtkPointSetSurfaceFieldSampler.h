@@ -5,116 +5,41 @@
  *          point-set surface at the points of a dataset or on a regular grid (Figures 5-10)
  *
  * A probe-style filter in the manner of vtkPointInterpolator. Input 0 is any vtkDataSet whose
- * points are sampled (an image slice or volume, a plane, a line, a polydata); the source (input 1,
- * SetSourceConnection() / SetSourceData()) is the point cloud that defines the surface. Which
- * surface, at which scale, is GetSurface()'s business (a vtkPointSetSurface shared with the other
- * PointSetSurfaces filters). The output is a shallow copy of input 0 with these point arrays:
- * - `Normal` (3 doubles): n(x), oriented by OrientationMode (below); zero where n is undefined
- *   (no unique smallest eigenvalue) or x is invalid. Also the active vectors, so vtkStreamTracer
- *   and vtkGlyph3D use it without further settings.
+ * points are sampled; the source (input 1, SetSourceConnection() / SetSourceData()) is the point
+ * cloud that defines the surface. Which surface, at which scale, is GetSurface()'s business. The
+ * output is a shallow copy of input 0 with these point arrays:
+ * - `Normal` (3 doubles): n(x), oriented by OrientationMode; zero where n is undefined or x is
+ *   invalid. The active vectors, for vtkStreamTracer and vtkGlyph3D.
  * - `Energy`: e(x, n(x)) at its true scale (LevinMLS underflows to 0 far away, never to NaN).
- * - `Delta`: the approximate squared distance delta(x) of Sec. 5 (pss::DistanceField).
- * - `ImplicitG`: g(x) = n(x) . grad_y e(y, n(x)) at y = x (Eq. 2), computed with the same
- *   oriented n as `Normal`. Its zero set holds the minima (the extremal surface) and the maxima
- *   of Figures 9 and 10. Also the active scalars, for vtkContourFilter at value 0.
- * - `Stability`: (lambda_1 - lambda_0) / (lambda_1 + lambda_0) of n(x) (or its e_I analogue).
- * - `ExtremumType`: 0 not an extremum / undetermined, 1 minimum, 2 maximum: the sign of the
- *   second derivative of e along n(x), i.e. on which side of g = 0 a sample is blue or green.
- * - `Valid` (0/1): 0 where the sample point has a NaN or infinite coordinate (or, never seen in
- *   practice, a quantity came out non-finite). Every other array is 0 there, never NaN.
- * - `DomainLabel` (ComputeDomainLabels on): pss::classifyStart of every sample, 0 in domain,
- *   1 spurious, 2 undefined, 3 not converged (see vtkPointSetSurfaceDomainClassifier). This
- *   projects every sample onto the surface (MaxIterations, Tolerance, MaxDistance,
- *   MaxNormalAngle, named and bounded as vtkPointSetSurfaceDomainClassifier's) and is
- *   expensive: on an 81 x 81 grid around a circle it multiplied the time by 3 (Delta), 6
- *   (CenterOfMass) and 45 (LevinMLS, whose far samples iterate long).
- *   Off by default.
+ * - `Delta`: the approximate squared distance delta(x) of Sec. 5.
+ * - `ImplicitG`: g(x) = n(x) . grad_y e(y, n(x)) at y = x (Eq. 2), with the same oriented n. Its
+ *   zero set holds the minima (the extremal surface) and the maxima of Figures 9 and 10. The
+ *   active scalars, for vtkContourFilter at value 0.
+ * - `Stability`: of n(x); `ExtremumType`: 0 undetermined, 1 minimum, 2 maximum (the sign of the
+ *   second derivative of e along n(x)).
+ * - `Valid` (0/1): 0 where the sample point has a NaN or infinite coordinate; every other array
+ *   is 0 there, never NaN.
+ * - `DomainLabel` (ComputeDomainLabels on; off by default, since it projects every sample):
+ *   0 in domain, 1 spurious, 2 undefined, 3 not converged, as vtkPointSetSurfaceDomainClassifier.
  *
- * @par Orientation of n.
- * n is an unoriented direction (n and -n are the same), but a stream tracer integrates vectors
- * and the sign of g depends on the sign of n (g(-n) = -g(n), since e(y, -a) = e(y, a)). A line
- * field cannot in general be oriented continuously (its singularities, the end points and
- * junctions of Figures 9 and 10, have half-integer index), so every rule has seams where the
- * vector flips. Across a seam the interpolated velocity is small or reversed, so a streamline
- * that meets one stops (STAGNATION) or is turned away from n; and g changes sign there, which
- * vtkContourFilter reports as a spurious zero contour. The rules differ in where their seams lie:
- * - AWAY_FROM_CENTROID (default): n . (x - c) >= 0, c the centroid of the finite cloud points,
- *   i.e. pss::Orientation::awayFromCentroid, the orientation of vtkPointSetSurfaceProjection's
- *   `Normal` too. The seam is where n is orthogonal to x - c. Near a closed curve or surface
- *   around c, n normal to the cloud points outwards on both sides of it, so g changes sign
- *   through the surface (negative inside, positive outside): its zero contour is the surface.
- *   Where n is parallel to the cloud (LevinMLS beyond about h / sqrt(2), Fig. 5) n points away
- *   from the plane through c normal to n, so streamlines run away from c along the cloud instead
- *   of stopping. For a straight line through c the seams are the perpendicular through c (in
- *   Levin's tangent region) and the line itself (in the normal region), and streamlines run away
- *   from both. Not suitable for the sign of g when the cloud is an open sheet through c: n flips
- *   on the sheet itself, so g >= 0 on both sides of it.
- * - AWAY_FROM_POINT: the same with a user ReferencePoint (e.g. a point inside a closed shape
- *   whose centroid is not inside it, or a point off an open sheet).
- * - ALONG_DIRECTION: n . ReferenceDirection >= 0. For a sheet that is a graph over a plane, with
- *   the plane's normal as the direction, g changes sign through the sheet (a line cloud along x
- *   with direction +y: g < 0 below, > 0 above). The seam is where n is orthogonal to the
- *   direction, e.g. all of LevinMLS's tangent region above such a sheet.
- * - PROPAGATE: starts from AWAY_FROM_CENTROID and makes neighbouring samples agree: a maximum
- *   spanning tree over the points of the output (neighbours: axis neighbours of an image,
- *   rectilinear or structured grid, else points consecutive in a cell) with weight |n_i . n_j|,
- *   grown from the most stable sample, every sample taking the sign that agrees with its parent
- *   (the normal orientation of Hoppe et al. 1992). Seams then lie only where n itself turns
- *   sharply (its singularities, where the weights are small): what a stream tracer needs for
- *   clouds of any shape, e.g. Levin's tangent field along a curved cloud (Fig. 9), which no
- *   point-wise rule can orient (n . (x - c) = 0 there). It depends on the whole set of samples,
- *   so a single point (and vtkPointSetSurfaceImplicitFunction, which evaluates one point at a
- *   time) cannot reproduce it; samples not connected by cells keep AWAY_FROM_CENTROID.
- * Which rule the tests use, and why (tests/vtk/fields/FieldStreamlineTest.cxx): on a straight
- * line through its centroid both AWAY_FROM_CENTROID and PROPAGATE put no seam across the path of
- * a streamline, so every streamline follows n (|cos| > 0.99 away from Levin's singular height
- * h / sqrt(2)) until it leaves the grid, including Levin's tangent streamlines above the line.
- * Around a circle only PROPAGATE orients Levin's tangent field: a streamline 1.5 h outside goes
- * round for its whole length budget, where with AWAY_FROM_CENTROID it leaves the circle after
- * about 3 h.
- * Hence the default AWAY_FROM_CENTROID, which is point-wise (the sampler and the implicit
- * function agree to the last bit) and right for closed shapes around their centroid, and
- * PROPAGATE for streamlines of general clouds.
+ * Orientation of n (OrientationMode): n is unoriented, so every rule has seams where the vector
+ * flips. AWAY_FROM_CENTROID (default, n . (x - c) >= 0) is point-wise and right for closed shapes
+ * around their centroid; AWAY_FROM_POINT uses ReferencePoint; ALONG_DIRECTION uses
+ * ReferenceDirection (a sheet that is a graph over a plane); PROPAGATE makes neighbouring samples
+ * agree (a maximum spanning tree of |n_i . n_j|), for streamlines of general clouds. Where each
+ * rule puts its seams: docs/vtk-filters.md.
  *
- * @par Sampling grid.
- * With GenerateSamplingGrid on, input 0 is not needed (and ignored if connected): the output is
- * a vtkImageData of SampleDimensions points (default 101 x 101 x 1) spanning the cloud's bounds
- * enlarged by SamplingMargin * h on every side (default 3). A dimension of 1 samples the mid-plane
- * of that axis (for a planar cloud, the plane of the cloud: a 2D slice). The whole extent is
- * announced in RequestInformation; the origin and spacing depend on the cloud and on h, so they
- * are announced there from the cloud available at that time (exact for SetSourceData() or an
- * up-to-date pipeline; provisional, origin 0 and spacing 1, before an upstream filter has run)
- * and always set on the output, and on its information, from the cloud actually sampled in
- * RequestData (as vtkResampleToImage does with its input bounds). Only the update extent
- * requested downstream is sampled. Grids with a dimension below 1, more than 2^31
- * samples or more than 4 GiB of output arrays are rejected with an error.
- * The grid stays a mode of this filter rather than a source of its own: both modes evaluate the
- * same fields with the same surface, orientation and domain settings at the points of the
- * output, and differ only in where those points come from (SetUpSamplingGrid or a copy of input
- * 0). A second class would repeat every setting.
+ * With GenerateSamplingGrid on, input 0 is not needed: the output is a vtkImageData of
+ * SampleDimensions points over the cloud's bounds enlarged by SamplingMargin * h (a dimension of 1
+ * samples the mid-plane of that axis). Its origin and spacing are announced in
+ * RequestInformation from the cloud available then and set again from the cloud actually
+ * sampled; only the requested update extent is sampled. Grids with a dimension below 1, more than
+ * 2^31 samples or more than 4 GiB of arrays are rejected with an error.
  *
- * @par Distributed runs.
- * Under MPI (pvbatch --symmetric, pvserver: a global vtkMultiProcessController with more than one
- * process) every rank asks for its own piece of the cloud, the pieces are gathered on every rank
- * (as vtkPointSetSurfaceProjection does), and each rank samples its own part: its piece of input 0,
- * or the part of the grid's extent the pipeline requests from it. Together the ranks' outputs are
- * the one-process output, bitwise; probe outputs carry `GlobalPointIds` (input 0's order, rank by
- * rank) unless input 0 has global ids. PROPAGATE needs the whole set of samples on one rank and is
- * refused with an error on every rank; use AWAY_FROM_CENTROID or ALONG_DIRECTION there.
- * With GhostMargin > 0 no rank holds the whole cloud: each holds its own cloud points plus the
- * other ranks' points inside the box of its samples grown by GhostMargin * h, and samples whose
- * evaluation reads beyond that box are evaluated again with a box grown by twice the margin (as
- * vtkPointSetSurfaceProjection does; the grid's geometry comes from the bounds and h reduced over
- * the ranks). Results are then bitwise the one-process output with the same GhostMargin (both
- * sum neighbourhoods in coordinate order).
- *
- * Errors (vtkErrorMacro, the update fails, no output): empty cloud or cloud without a finite
- * point, h <= 0 (AutomaticScale off and ScaleFactor <= 0), an invalid reference direction or
- * point, no input 0 without GenerateSamplingGrid, an absurd grid. Cloud points with NaN or
- * infinite coordinates are skipped with a warning.
- *
- * Runs threaded through vtkSMPTools (on the backend the application chose: see
- * vtkPointSetSurface::UseThreadedBackend), reports progress and honours AbortExecute.
+ * Errors (the update fails, no output): an empty cloud, h <= 0, an invalid reference direction
+ * or point, no input 0 without GenerateSamplingGrid, an absurd grid. Threads through vtkSMPTools,
+ * reports progress and honours AbortExecute. Runs distributed under MPI, each rank sampling its
+ * own part; PROPAGATE is refused there (docs/distributed.md).
  *
  * @sa vtkPointSetSurface vtkPointSetSurfaceImplicitFunction vtkPointSetSurfaceProjection
  *     vtkStreamTracer vtkContourFilter

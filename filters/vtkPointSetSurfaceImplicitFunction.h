@@ -8,36 +8,22 @@
  * - IMPLICIT_G (default): g(x) = n(x) . grad_y e(y, n(x)) at y = x (Eq. 2), whose zero set holds
  *   the extremal surface (minima of e along n) and the maxima of Figures 9 and 10;
  * - ENERGY: e(x, n(x)) at its true scale (LevinMLS underflows to 0 far from the cloud);
- * - DELTA: the approximate squared distance delta(x) of Sec. 5.
+ * - DELTA: the approximate squared distance delta(x) of Sec. 5;
  * so that vtkSampleFunction, vtkContourFilter, vtkCutter, vtkClipPolyData, vtkExtractGeometry,
  * ... work on a point-set surface. The cloud is given by SetInputData() (or SetPoints()); the
  * definition and scale by GetSurface() (a vtkPointSetSurface, shareable with the filters).
  *
- * The values are those of vtkPointSetSurfaceFieldSampler's `ImplicitG`, `Energy` and `Delta`
- * arrays, to the last bit: both classes evaluate a point through the same private helper
- * (PointSetSurfacesFieldEvaluation.h). The sign of g follows the orientation of n, chosen by
- * OrientationMode exactly as in the sampler (AWAY_FROM_CENTROID, the default, AWAY_FROM_POINT
- * with ReferencePoint, ALONG_DIRECTION with ReferenceDirection; see vtkPointSetSurfaceFieldSampler
- * for where each rule puts its seams). The sampler's PROPAGATE mode needs a whole mesh of samples
- * and has no point-wise equivalent here.
- *
- * Where g is not defined the function returns 0: at points with NaN or infinite coordinates,
- * where n(x) is undefined, and when the surface cannot be set up (empty cloud, h <= 0, no cloud:
- * reported once with vtkErrorMacro per modification of this object, the surface or the cloud).
- *
- * EvaluateGradient() is a central difference of EvaluateFunction() with step
- * FiniteDifferenceStep * h along each axis (2 evaluations per axis; the z derivative of a 2D
- * cloud is exactly 0 and is not evaluated). Its error is O(step^2) where the function is smooth;
- * across an orientation seam of n (where g changes sign by flipping) it is meaningless.
+ * The values are those of vtkPointSetSurfaceFieldSampler's `ImplicitG`, `Energy` and `Delta`, to
+ * the last bit. The sign of g follows the orientation of n, chosen by OrientationMode as in the
+ * sampler (AWAY_FROM_CENTROID, AWAY_FROM_POINT, ALONG_DIRECTION; the sampler's PROPAGATE has no
+ * point-wise equivalent). Where g is not defined the function returns 0: at NaN or infinite
+ * points, where n(x) is undefined, and when the surface cannot be set up (reported once with
+ * vtkErrorMacro). EvaluateGradient() is a central difference with step FiniteDifferenceStep * h.
  *
  * Thread safety: EvaluateFunction() and EvaluateGradient() may be called concurrently (as
- * vtkSampleFunction does from its vtkSMPTools threads). The surface is prepared once, on the first
- * evaluation after a change of this object, the surface or the cloud (or by Initialize()), under
- * a mutex; the evaluations themselves only read and take no lock. Do not modify this object, its
- * surface or its cloud while evaluations are running. A vtkPointSetSurface caches one cloud at a
- * time: sharing it with a filter on a different cloud works (the function notices that the
- * surface was prepared for another cloud and prepares it again) but rebuilds the index at every
- * switch, and must not happen while evaluations run.
+ * vtkSampleFunction does). The surface is prepared once, under a mutex, on the first evaluation
+ * after a change of this object, its surface or its cloud; do not modify them while evaluations
+ * are running.
  *
  * @sa vtkPointSetSurfaceFieldSampler vtkPointSetSurface vtkSampleFunction vtkContourFilter
  */

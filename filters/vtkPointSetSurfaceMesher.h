@@ -5,51 +5,30 @@
  *
  * Input: the cloud (any vtkPointSet). Output: a vtkPolyData of triangles (3D) or line segments
  * (2D) approximating the extremal surface (Definition 1 of Amenta & Kil) of the Surface's
- * definition, restricted to its domain. The method (pss::SurfaceMesher, see
- * filters/core/pss/SurfaceMesh.h):
- * - a sparse band of grid cells of side CellSize * h around the cloud (cells holding a point,
- *   grown by Band * h), so cost and memory follow the surface's area, not the bounding box;
- * - n and g (Eq. 2) at the band's grid corners, n oriented consistently over the band (propagated
- *   between neighbouring corners, most parallel first), so that g changes sign only through
- *   the surface (and its maxima);
- * - the zero crossings of g contoured with marching simplices (each cell split into six
- *   tetrahedra, two triangles in 2D, the same way everywhere: no cracks);
- * - every crossing projected onto the surface and labelled like vtkPointSetSurfaceDomainClassifier
- *   does; a triangle is kept only when its three vertices are InDomain and travelled at most
- *   MaxVertexTravel cells (maxima of e and spurious sheets fail one or the other). With
- *   ProjectVertices (default) the vertices are the projections, so their accuracy is the
- *   projection's, not the grid's.
+ * definition, restricted to its domain. The zero crossings of g (Eq. 2) are contoured on a sparse
+ * band of grid cells of side CellSize * h around the cloud, with n oriented consistently over the
+ * band; every crossing is projected onto the surface and labelled as
+ * vtkPointSetSurfaceDomainClassifier does, and a triangle is kept only when its three vertices are
+ * InDomain, travelled at most MaxVertexTravel cells and do not fold; small holes are then closed
+ * and covered islands removed (pss::SurfaceMesher, filters/core/pss/SurfaceMesh.h). The stages and
+ * the reasons for each default are in docs/mesh.md.
  *
  * Point arrays: `Normals` (n at the vertex, oriented consistently over each piece; the active
- * normals; triangles are counter-clockwise about them), `Stability`, `Energy`, `DomainLabel` (all 0,
- * InDomain, by construction: the array is there for pipelines that append classified points),
- * `DistanceToCloud`, `NormalAngle`, `StartAngle`, `StartStability` (the classifier's evidence for the
- * crossing that became the vertex), `Displacement` (from the grid crossing to the vertex),
- * `Iterations`, `StopReason`. Field data: `ScaleFactor` and `Dimension` (as every filter), the
- * parameters `CellSize`, `Band` (in h), and the counts `BandCells`, `GridVertices`, `Crossings`,
- * `DroppedVertices` (of which `MaximumCrossings`), `SeamSimplices`, `FoldedTriangles`,
- * `UndefinedGridVertices` (why parts are missing), `Components`, `BoundaryEdges`,
+ * normals; triangles are counter-clockwise about them), `Stability`, `Energy`, `DomainLabel`,
+ * `DistanceToCloud`, `NormalAngle`, `StartAngle`, `StartStability` (the classifier's evidence for
+ * the crossing that became the vertex), `Displacement` (from the grid crossing to the vertex),
+ * `Iterations`, `StopReason`. Field data: `ScaleFactor`, `Dimension`, `CellSize`, `Band` and the
+ * counts `BandCells`, `GridVertices`, `Crossings`, `DroppedVertices`, `MaximumCrossings`,
+ * `SeamSimplices`, `FoldedTriangles`, `UndefinedGridVertices` (why parts are missing),
+ * `RemovedPieces`, `CoveredPieces`, `ClosedHoles`, `Components`, `BoundaryEdges`,
  * `NonManifoldEdges`, `EulerCharacteristic`.
  *
- * Errors (vtkErrorMacro, empty output): an empty cloud, h <= 0, invalid parameters, and a band
- * of more than MaximumNumberOfBandCells cells (refused before it is allocated, with the count).
- * Threads with vtkSMPTools; reports progress and honours AbortExecute (empty output); the output
- * is bitwise the same on any number of threads.
- *
- * Distributed runs (MPI, a global controller of several processes): every rank gathers the
- * cloud's pieces and builds the same band; the two costly stages are split (pss::StageSplit):
- * each rank evaluates n and g at its block of the grid corners, and projects and classifies its
- * block of the crossings, and the blocks are exchanged (one AllGatherV each), so every rank has
- * the one-process values bitwise. The cheap global stages (orientation of n over the band,
- * contouring, hole closing, piece removal) are repeated on every rank. Each rank then keeps its
- * share of the cells, rank r the cells [r T / N, (r + 1) T / N) of T, with the points they use
- * and `GlobalPointIds`, their ids in the whole mesh. Merged by global id, the ranks' outputs are
- * the one-process mesh, so that a distributed pipeline can render or write it in parallel.
- * With GhostMargin > 0 no rank gathers the cloud: the band comes from every rank's occupied cells
- * (one AllGatherV of cell keys), and each of the three split stages (corners, crossings, the
- * small holes' centres) runs in ghost rounds (pss_vtk::RunGhostRounds) over the rank's block;
- * neighbourhoods are summed in coordinate order, so the mesh is bitwise the one-process mesh of
- * the same GhostMargin. The band itself is still held whole on every rank (about 60 B a cell).
+ * Errors (vtkErrorMacro, empty output): an empty cloud, h <= 0, invalid parameters, and a band of
+ * more than MaximumNumberOfBandCells cells (refused before it is allocated). Threads with
+ * vtkSMPTools; reports progress and honours AbortExecute; the output is bitwise the same on any
+ * number of threads. Under MPI the costly stages are split over the ranks and each rank keeps a
+ * share of the cells with `GlobalPointIds`; merged by global id, the ranks' outputs are the
+ * one-process mesh (docs/distributed.md).
  *
  * @sa vtkPointSetSurfaceDomainClassifier vtkPointSetSurfaceFieldSampler vtkPointSetSurface
  */
@@ -93,7 +72,7 @@ public:
   /**
    * Side of the grid's cells, in units of h, within [0.05, 100]. Smaller cells catch finer
    * features and cost about 1/CellSize^2 more on a surface. Default 1 (with projected vertices,
-   * the mesh's accuracy does not depend on it much: see the README's measurements).
+   * the mesh's accuracy does not depend on it much: docs/mesh.md).
    */
   vtkSetClampMacro(CellSize, double, 0.05, 100.0);
   vtkGetMacro(CellSize, double);

@@ -26,22 +26,10 @@
  * Runs threaded through vtkSMPTools (on the backend the application chose: see
  * vtkPointSetSurface::UseThreadedBackend), reports progress and honours AbortExecute.
  *
- * Distributed: under a global vtkMultiProcessController of more than one process (mpiexec
- * pvbatch/pvserver) every rank must execute; the cloud pieces of all ranks are gathered on every
- * rank (in rank order), so the surface (automatic h, orientation, bounds) is bitwise the one of a
- * one-process run over the concatenated pieces, and each rank projects its own start points. The
- * output stays distributed; without global ids in the start points it gets `GlobalPointIds`
- * (the point's index in the concatenated start points). With GhostMargin 0 (the default) each
- * rank holds the whole cloud: memory per rank does not shrink with more ranks. With GhostMargin
- * > 0 each rank holds its own cloud points plus the other ranks' points inside the box of its
- * start points grown by GhostMargin * h; a projection whose neighbourhoods reach beyond that box
- * is flagged by the core and projected again in a next round with a box grown by twice the
- * margin, until none is (at worst the box holds the whole cloud). h, the centroid that orients
- * n and the dimension are the one-process values (the automatic h is estimated on rank 0, which
- * holds the whole cloud for that moment: set ScaleFactor to avoid it). With GhostMargin > 0 every
- * neighbourhood is summed in the order of its points' coordinates, on the ranks and in one
- * process alike (pss::PointIndex::setCoordinateOrder, 10-20% slower on the cheapest definition),
- * so results are bitwise the one-process run's with the same GhostMargin; see the README.
+ * Under MPI (a global controller of several processes) every rank must execute; each rank
+ * projects its own start points and the output stays distributed, with `GlobalPointIds`, equal
+ * to the one-process output. GhostMargin 0 gathers the whole cloud on every rank; GhostMargin > 0
+ * exchanges only ghost points around each rank's start points. See docs/distributed.md.
  *
  * @sa vtkPointSetSurface vtkPointSetSurfaceDomainClassifier
  */

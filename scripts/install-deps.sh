@@ -9,12 +9,13 @@ set -euo pipefail
 # Building the plugin also needs MPI (ParaView's VTK::mpi links MPI::MPI_C), Qt5Help and Qt's
 # xmlpatterns (the server-manager XML is turned into help pages); mpiexec runs the two-rank pvbatch
 # test. The fuzz targets (tests/fuzz)
-# need clang and its compiler-rt (libFuzzer and the sanitizer runtimes).
+# need clang and its compiler-rt (libFuzzer and the sanitizer runtimes). The numpy functions of the
+# Python package (and their tests, in Debian's python3 and pvpython) need python3-numpy.
 packages=(
   build-essential cmake pkg-config
   clang libclang-rt-14-dev
   libeigen3-dev libnanoflann-dev libgtest-dev
-  paraview-dev python3-paraview qtbase5-dev libdouble-conversion-dev
+  paraview-dev python3-paraview python3-numpy qtbase5-dev libdouble-conversion-dev
   mpi-default-dev mpi-default-bin qttools5-dev qtxmlpatterns5-dev-tools
   xvfb xauth
   liblzf-dev doxygen

@@ -3,7 +3,7 @@
 # the test stages under ctest. Stages are ctest labels (cmake/PssTesting.cmake):
 #
 #   scripts/test.sh           every stage, one after another (what .ci/run runs):
-#                               1. plain:     unit pipeline cli paper paraview install python bunny
+#                               1. plain:     unit pipeline cli paper paraview install python portable docs bunny
 #                               2. sanitizer: builds the ASan+UBSan copy, alone, runs its suites; the same with TSan
 #                               3. fuzz:      builds the libFuzzer targets with clang, alone, runs each fuzzer
 #                               4. clang:     builds the unit, pipeline and cli suites with clang, alone, runs them

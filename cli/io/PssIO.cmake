@@ -4,6 +4,7 @@
 set(PSS_IO_SOURCES
   "${CMAKE_CURRENT_LIST_DIR}/../PssIO.cxx"
   "${CMAKE_CURRENT_LIST_DIR}/Mesh.cxx"
+  "${CMAKE_CURRENT_LIST_DIR}/Pcd.cxx"
   "${CMAKE_CURRENT_LIST_DIR}/Ply.cxx"
   "${CMAKE_CURRENT_LIST_DIR}/Table.cxx"
   "${CMAKE_CURRENT_LIST_DIR}/Text.cxx"
@@ -13,3 +14,9 @@ set(PSS_IO_SOURCES
 # VTK::expat: VtkXmlFile.cxx asks expat, through vtkXMLDataParser's parser, what went wrong.
 set(PSS_IO_VTK_LIBRARIES VTK::CommonCore VTK::CommonDataModel VTK::CommonExecutionModel VTK::FiltersCore
   VTK::IOCore VTK::IOGeometry VTK::IOPLY VTK::IOXML VTK::IOXMLParser VTK::expat)
+# The module's PCD reader and writer (io/Pcd.cxx calls them): pss links the module, the fuzz
+# targets compile these sources themselves, instrumented.
+set(PSS_PCD_SOURCES
+  "${CMAKE_CURRENT_LIST_DIR}/../../filters/vtkPCDReader.cxx"
+  "${CMAKE_CURRENT_LIST_DIR}/../../filters/vtkPCDWriter.cxx"
+  "${CMAKE_CURRENT_LIST_DIR}/../../filters/PointSetSurfacesPCD.cxx")

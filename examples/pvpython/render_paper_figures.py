@@ -9,7 +9,7 @@ Writes OUTDIR/fig01_02_projection_lines.png, fig05_line_glyphs.png, fig06_corner
 fig07_delta.png, fig09_levin_h10.png, fig10_integral_h10.png, fig03_planes.png, fig04_legend.png and
 fig08_noisy_band.png. Each panel is rendered on its
 own (2D, parallel projection) and the panels are put together with vtkImageAppend, then saved as
-8-bit palette PNGs (small enough for the README). PSS_KEEP_PANELS=1 keeps the single panels in
+8-bit palette PNGs (small enough for the docs). PSS_KEEP_PANELS=1 keeps the single panels in
 OUTDIR/.panels. Figures 6, 9 and 10 draw the polyline of vtkPointSetSurfaceMesher (fig06_*_mesh.vtp,
 fig09_levin_mesh.vtp, fig10_integral_mesh.vtp) over the surface points, with the result of its check
 against them from paper_checks.json.
@@ -205,7 +205,7 @@ def caption_panel(width, height, text, size=14, location="Upper Left Corner"):
 
 def write_indexed_png(rgb, filename, colors=256):
     """An 8-bit palette PNG of an RGB vtkImageData: line drawings need few colours, and a palette
-    image is a third of the size of an RGB one (the README shows these files)."""
+    image is a third of the size of an RGB one (docs/paper.md shows these files)."""
     q = vtkImageQuantizeRGBToIndex()
     q.SetInputData(rgb)
     q.SetNumberOfColors(colors)

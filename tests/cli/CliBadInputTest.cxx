@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The pss tool on unreadable, malformed and absurd input, as the README's bad-input table states
-// it: every case exits 1 with a message that says what is wrong (never a crash, which RunCommand
-// reports as exit -1), and nothing is written.
+// The pss tool on unreadable, malformed and absurd input, as the bad-input table
+// (docs/bad-input.md) states it: every case exits 1 with a message that says what is wrong (never
+// a crash, which RunCommand reports as exit -1), and nothing is written.
 #include "CliTestUtilities.h"
 
 #include "vtkNew.h"
@@ -389,4 +389,24 @@ TEST(CliBadInput, AbsurdGrids)
   }
   const CommandResult usage = RunCommand(Pss() + " sample " + cloud + " --grid 10 -o " + TempPath("grid.vti"));
   EXPECT_EQ(usage.exitCode, 2) << usage.output;
+}
+
+// PCD: the reader's checks reach the tool as exit 1 and their message (the full list is
+// PCDBadInput.* of the pipeline stage); an empty cloud is refused by the surface.
+TEST(CliBadInput, MalformedPcd)
+{
+  const std::string fields = "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+  ExpectRejected(Write("empty.pcd", ""), "the file is empty");
+  ExpectRejected(Write("header-only.pcd", fields + "WIDTH 3\nHEIGHT 1\nPOINTS 3\n"), "without a DATA line");
+  ExpectRejected(Write("negative.pcd", fields + "WIDTH -3\nHEIGHT 1\nPOINTS 3\nDATA ascii\n"),
+    "WIDTH '-3' is not a non-negative integer");
+  ExpectRejected(Write("claims.pcd", fields + "WIDTH 100000000\nHEIGHT 1\nPOINTS 100000000\nDATA binary\n1234"),
+    "truncated: POINTS 100000000 x 12 bytes");
+  ExpectRejected(Write("bomb.pcd", fields + "WIDTH 100000000\nHEIGHT 1\nPOINTS 100000000\nDATA binary_compressed\n" +
+                                     std::string("\x08\0\0\0\0\x8c\x86\x47", 8) + std::string(8, '\x1f')),
+    "more than LZF's largest ratio");
+  ExpectRejected(Write("kind.pcd", fields + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA text\n1 2 3\n"), "unknown DATA kind 'text'");
+  ExpectRejected(Write("sizes.pcd", "FIELDS x y z\nSIZE 4 4\nTYPE F F F\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2 3\n"),
+    "has 2 SIZE, 3 TYPE");
+  ExpectRejected(Write("zero.pcd", fields + "WIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA binary\n"), "empty");
 }

@@ -11,7 +11,7 @@
 //   with the exact path's: StopReason and ExtremumType the same for 99.5% of a test's starts,
 //   convergence differing for at most 0.5%, and end points, n and labels no farther from the
 //   exact path's than the exact path's own at the next quadrature order (see expectAgreement:
-//   issue 15's 1e-3 h is below that, so it is printed, not asserted);
+//   a bound of 1e-3 h is below that, so it is printed, not asserted);
 // - results are bitwise the same on 1 and 2 threads and with a used or a fresh workspace.
 
 #include "TestClouds.h"
@@ -129,7 +129,7 @@ std::ostream& operator<<(std::ostream& os, const Deviation& d)
             << 100 * d.convergenceDiffers << "%; n p99 " << d.angleP99 << " degrees";
 }
 
-// Outcomes that must agree, counted over all the scenes of a test (issue 15's 99.5% is a share of
+// Outcomes that must agree, counted over all the scenes of a test (the 99.5% is a share of
 // the starts; one scene of 142 starts would turn a single borderline start into 0.7%).
 struct Tally
 {
@@ -148,16 +148,17 @@ struct Tally
   }
 };
 
-// The fast path against the exact one, on one cloud and start set. Issue 15 asks for end points
+// The fast path against the exact one, on one cloud and start set. One could ask for end points
 // within 1e-3 h at 99% of the starts and n within 1 degree; the exact path itself does not meet
 // that against its own next quadrature order (order 7 instead of 6) on these scenes: starts where
 // the minimum along n is shallow, far from the cloud or at a corner, land up to a few h apart, and
-// border starts slide along the surface by up to 1e-2 h (README, reading 11). So the fast path is
-// held to the exact path's own discretization: per scene, its end points may deviate from order
-// 6's no more than order 7's do (p99), its n no more than twice as much as order 7's n (p99 of the
-// angle where the exact stability exceeds 0.01: near a dihedral edge, where n is barely defined,
-// the lattice's 2.3 degrees against order 7's 2.2). Stop reasons, extremum types, labels and
-// convergence are counted into @p tally per definition (0 integral, 1 delta), for expectOutcomes.
+// border starts slide along the surface by up to 1e-2 h (docs/paper.md, "Reading: the integral
+// energy's fast path"). So the fast path is held to the exact path's own discretization: per scene,
+// its end points may deviate from order 6's no more than order 7's do (p99), its n no more than
+// twice as much as order 7's n (p99 of the angle where the exact stability exceeds 0.01: near a
+// dihedral edge, where n is barely defined, the lattice's 2.3 degrees against order 7's 2.2). Stop
+// reasons, extremum types, labels and convergence are counted into @p tally per definition (0
+// integral, 1 delta), for expectOutcomes.
 void expectAgreement(const std::string& name, const std::vector<Vec3>& cloud, int dim, double h,
   const std::vector<Vec3>& starts, Tally (&tally)[2])
 {
@@ -180,7 +181,7 @@ void expectAgreement(const std::string& name, const std::vector<Vec3>& cloud, in
   }
 }
 
-// Issue 15's bounds on the outcomes, over every start of a test's scenes: StopReason and
+// The bounds on the outcomes, over every start of a test's scenes: StopReason and
 // ExtremumType the same for 99.5%, convergence different for at most 0.5%, DomainLabel the same
 // for 99.5% or as often as the exact path's order 7 agrees with its order 6.
 void expectOutcomes(const Tally (&tally)[2])
@@ -327,11 +328,12 @@ TEST(DeltaLattice, IntegralDirectionStaysNormalToALineAndAPlane)
 
 // The fast path's stability takes e_perp and e_min from the rough rule where that gives at least
 // 0.05, else from the full rule (IntegralDirection::fit). Truths: over a single point p, delta^2 =
-// |y - p|^4 is a polynomial of degree 4, which both rules integrate exactly (Gauss-Hermite of
-// order 3 is exact to degree 5) and the lattice reproduces, so the two paths' stabilities agree to
+// |y - p|^4 is a polynomial of degree 4, which both rules integrate exactly (Gauss-Hermite of order
+// 3 is exact to degree 5) and the lattice reproduces, so the two paths' stabilities agree to
 // rounding; over a plane, where n is clearly defined, the rough rule's stability stays within 0.02
-// of the exact path's (README, reading 11: 1.8e-2 at most on the bunny). Whether n is defined
-// near the threshold is decided by the full rule; the agreement tests below count those outcomes.
+// of the exact path's (docs/paper.md, "Reading: the integral energy's fast path": 1.8e-2 at most on
+// the bunny). Whether n is defined near the threshold is decided by the full rule; the agreement
+// tests below count those outcomes.
 TEST(DeltaLattice, StabilityFromTheRoughRuleMatchesTheExactOne)
 {
   const double h = 1.0;

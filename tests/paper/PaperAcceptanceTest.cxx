@@ -214,30 +214,30 @@ TEST_F(PaperCorner, SpuriousMeansConvergedAndFartherThan2hFromEveryPoint)
   EXPECT_EQ(spurious, p.stats.spurious);
 }
 
-// ---- The README gallery ------------------------------------------------------------------------
+// ---- The gallery of docs/paper.md -----------------------------------------------------------------
 
 TEST(PaperGallery, ReadmeShowsEveryFigureWithAClaimAndAMeasurement)
 {
   const std::filesystem::path root(PSS_SOURCE_DIR);
-  std::ifstream in(root / "README.md");
-  ASSERT_TRUE(in) << "cannot read README.md";
+  std::ifstream in(root / "docs" / "paper.md");
+  ASSERT_TRUE(in) << "cannot read docs/paper.md";
   std::stringstream text;
   text << in.rdbuf();
-  const std::string readme = text.str();
-  const std::size_t begin = readme.find("## Reproducing the paper (the main demo)");
-  const std::size_t end = readme.find("## What is implemented, equation by equation");
+  const std::string page = text.str();
+  const std::size_t begin = page.find("## The figures, claim by claim");
+  const std::size_t end = page.find("## What is implemented, equation by equation");
   ASSERT_NE(begin, std::string::npos);
   ASSERT_NE(end, std::string::npos);
   ASSERT_LT(begin, end);
-  const std::string section = readme.substr(begin, end - begin);
+  const std::string section = page.substr(begin, end - begin);
   for (const char* image : { "fig01_02_projection_lines.png", "fig03_planes.png", "fig04_legend.png",
          "fig05_line_glyphs.png", "fig06_corner.png", "fig07_delta.png", "fig08_noisy_band.png",
          "fig09_levin_h10.png", "fig10_integral_h10.png" })
   {
-    const std::string link = std::string("docs/images/") + image;
+    const std::string link = std::string("(images/") + image + ")";
     const std::size_t at = section.find(link);
     EXPECT_NE(at, std::string::npos) << "the gallery does not show " << image;
-    const std::filesystem::path file = root / link;
+    const std::filesystem::path file = root / "docs" / "images" / image;
     ASSERT_TRUE(std::filesystem::exists(file)) << file;
     EXPECT_LT(std::filesystem::file_size(file), 250u * 1024u) << file;
     if (at != std::string::npos)
@@ -251,7 +251,7 @@ TEST(PaperGallery, ReadmeShowsEveryFigureWithAClaimAndAMeasurement)
   // The figures whose claims are checked name the bound and the test beside the measurement.
   for (const char* image : { "fig03_planes.png", "fig08_noisy_band.png" })
   {
-    const std::size_t at = section.find(std::string("docs/images/") + image);
+    const std::size_t at = section.find(std::string("(images/") + image + ")");
     ASSERT_NE(at, std::string::npos) << image;
     const std::string around = section.substr(at, 2800);
     EXPECT_NE(around.find("Bound"), std::string::npos) << image;

@@ -5,13 +5,14 @@
 Fails (exit status 1, one line per problem) when
 - a proxy lacks a Documentation element with short_help, long_help and text, or a property
   lacks one with short_help and text (the tooltip and the help panel);
-- a filter or source proxy is not in the "Point Set Surfaces" menu category;
+- a filter or source proxy is not in the "Point Set Surfaces" menu category (readers excepted:
+  File > Open lists them);
 - a property named X does not call SetX;
 - a property's default_values differ from the initial value of the C++ member it sets (read from
   the class's header and its superclasses' headers in filters/), or the member cannot be found;
 - a range or enumeration domain allows values that the C++ setter's vtkSetClampMacro clamps away;
 - a class of the VTK module has no proxy (vtkPointSetSurfaceImplicitFunction excepted: it is not a
-  pipeline object, see README "ParaView plugin"; nor the abstract vtkPointSetSurfaceAlgorithm), or the surface sub-proxy does not expose every
+  pipeline object, see docs/paraview.md; nor the abstract vtkPointSetSurfaceAlgorithm), or the surface sub-proxy does not expose every
   property of the PointSetSurface proxy;
 - a filter whose class (or superclass) says it runs distributed (SupportsDistributedRun() returning
   true) is still multiprocess_support="single_process", or a single_process filter does not say
@@ -118,7 +119,7 @@ def main():
     proxies = {}
     for group in root.findall("ProxyGroup"):
         for proxy in group:
-            if proxy.tag not in ("Proxy", "SourceProxy"):
+            if proxy.tag not in ("Proxy", "SourceProxy", "WriterProxy"):
                 continue
             name = proxy.get("name")
             where = "%s/%s" % (group.get("name"), name)
@@ -128,7 +129,8 @@ def main():
                 problems.append("%s: Documentation with short_help and long_help missing" % where)
             if doc is not None and not (doc.text or "").strip():
                 problems.append("%s: Documentation has no text" % where)
-            if group.get("name") in ("filters", "sources"):
+            # Readers are listed by File > Open (their ReaderFactory hint), not in a menu.
+            if group.get("name") in ("filters", "sources") and proxy.find("Hints/ReaderFactory") is None:
                 menu = proxy.find("Hints/ShowInMenu")
                 if menu is None or menu.get("category") != MENU_CATEGORY:
                     problems.append('%s: not in the "%s" menu category' % (where, MENU_CATEGORY))
@@ -155,7 +157,8 @@ def main():
                     problems.append("%s: Documentation with short_help and text missing" % pwhere)
                 if prop.get("panel_visibility") not in (None, "default", "advanced", "never"):
                     problems.append("%s: unknown panel_visibility %s" % (pwhere, prop.get("panel_visibility")))
-                if prop.tag == "InputProperty":
+                # Inputs, and file names, which have no default to compare.
+                if prop.tag == "InputProperty" or prop.get("name") == "FileName":
                     continue
                 command = prop.get("command") or ""
                 if not command.startswith("Set"):

@@ -2,7 +2,8 @@
 /**
  * @file DeltaLattice.h
  * @brief delta read from a lattice instead of evaluated at every quadrature node of e_I: the fast
- *        path of the integral and delta definitions (issue 15, SurfaceParameters::deltaLattice).
+ *        path of the integral and delta definitions (SurfaceParameters::deltaLattice; docs/paper.md,
+ *        "Reading: the integral energy's fast path").
  *
  * One e_I is 36 quadrature nodes, each a full neighbourhood of some 200 points; a projection
  * takes some 45 e_I, and neighbouring projections put their nodes in the same region of space.

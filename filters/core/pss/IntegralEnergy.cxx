@@ -504,7 +504,8 @@ DirectionFit IntegralDirection::fit(const Vec3& x, DirectionMemory& memory, Work
   // grows about as the fourth power of the distance from it, a polynomial the rough rule
   // integrates exactly, and one rule for both keeps the ratio 0 where they are equal. Where
   // that stability is not clearly above the threshold (below 0.05, as for the estimate above)
-  // the full rule decides, as on the exact path. Measured: README, reading 11.
+  // the full rule decides, as on the exact path. Measured: docs/paper.md, "Reading: the integral
+  // energy's fast path".
   Across across;
   Direction result;
   bool decided = false;

@@ -40,7 +40,7 @@ struct SurfaceParameters
   double cutoff = 3.0;        ///< truncation, in units of h, beyond the nearest point (see above)
   int quadratureOrder = 6;    ///< Gauss-Hermite nodes per in-plane axis for e_I (1..32)
   int integrandPower = 2;     ///< e_I integrates delta^power; the paper uses 2 (appendix: 1 is blind)
-  double minStability = 1e-5; ///< n(x) counts as undefined below this stability (see README)
+  double minStability = 1e-5; ///< n(x) counts as undefined below this stability (docs/paper.md)
   /// Spacing, in units of h, of the lattice from which e_I's quadrature reads delta (DeltaLattice.h);
   /// 0 evaluates delta exactly at every node (the reference). Otherwise within [0.05, 1].
   double deltaLattice = 0.0;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * The rows of the README's "What happens with bad input" table that the other bad-input suites
+ * The rows of the bad-input table (docs/bad-input.md) that the other bad-input suites
  * do not already pin down: one point, duplicated points, collinear and coplanar points in 3D, h
  * much larger than the cloud, start points 1000 h away, a grid of 10^10 samples and datasets
  * without points. Each case states the exact outcome per variant (StopReason, DomainLabel, where

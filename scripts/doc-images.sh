@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# The documentation's images, made again from a built tree (scripts/build.sh first):
+#
+#   scripts/doc-images.sh
+#
+# Runs the main demo (pss-paper-figures, whose figures examples/pvpython/render_paper_figures.py
+# renders in pvbatch under xvfb-run), then the ParaView examples figure9_10_scene.py and
+# bunny_mesh.py with the plugin, all into BUILD/doc-images, and copies into docs/images exactly the
+# images that README.md and docs/*.md show; an image there that no page shows is removed. Fails
+# when a page shows an image that none of these programs made. Commit docs/images afterwards.
+# Environment: PSS_BUILD_DIR (default build/), PSS_DOC_IMAGES_DIR (where the programs write,
+# default BUILD/doc-images).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${PSS_BUILD_DIR:-$root/build}"
+demo="$build/bin/pss-paper-figures"
+plugin="$build/lib/paraview-plugins/PointSetSurfaces"
+out="${PSS_DOC_IMAGES_DIR:-$build/doc-images}"
+images="$root/docs/images"
+
+if [ ! -x "$demo" ] || [ ! -d "$plugin" ]; then
+  echo "doc-images.sh: $demo or $plugin is missing: build first (scripts/build.sh)" >&2
+  exit 1
+fi
+for tool in pvbatch xvfb-run; do
+  if ! command -v "$tool" > /dev/null; then
+    echo "doc-images.sh: $tool is not on PATH (scripts/install-deps.sh installs it)" >&2
+    exit 1
+  fi
+done
+mkdir -p "$out"
+
+echo "doc-images.sh: the main demo and its figures"
+"$demo" --out "$out/paper-figures" --renderer "$root/examples/pvpython/render_paper_figures.py"
+echo "doc-images.sh: the Figure 9 scene in ParaView"
+xvfb-run -a pvbatch "$root/examples/pvpython/figure9_10_scene.py" --plugin "$plugin" --size 960x640 \
+  --output "$out/figure9_10_scene.png"
+echo "doc-images.sh: the bunny mesh in ParaView"
+xvfb-run -a pvbatch "$root/examples/pvpython/bunny_mesh.py" --plugin "$plugin" --size 960x480 \
+  --output "$out/bunny_mesh.png"
+
+# The images the pages show: every ](...images/NAME.png) of README.md and docs/*.md.
+mapfile -t shown < <(grep -ohE '\]\((docs/)?images/[A-Za-z0-9_.-]+\.png' "$root/README.md" "$root"/docs/*.md \
+  | sed -E 's|.*images/||' | sort -u)
+mkdir -p "$images"
+for name in "${shown[@]}"; do
+  made=""
+  for candidate in "$out/$name" "$out/paper-figures/$name"; do
+    if [ -f "$candidate" ]; then
+      made="$candidate"
+    fi
+  done
+  if [ -z "$made" ]; then
+    echo "doc-images.sh: a page shows images/$name, which no program here made" >&2
+    exit 1
+  fi
+  cp "$made" "$images/$name"
+  echo "doc-images.sh: docs/images/$name"
+done
+for existing in "$images"/*; do
+  name="$(basename "$existing")"
+  if ! printf '%s\n' "${shown[@]}" | grep -qxF "$name"; then
+    echo "doc-images.sh: removing docs/images/$name (no page shows it)"
+    rm -f "$existing"
+  fi
+done
+echo "doc-images.sh: done; commit docs/images"
