@@ -38,8 +38,10 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
+#include "vtkVersion.h"
 
-#include "pss/VariantTable.h"
+#include "pss/Kernel.h"
+#include "pss/VariantCatalog.h"
 
 #include <chrono>
 #include <cstdio>
@@ -639,8 +641,19 @@ const char* const MainHelp = "usage: pss SUBCOMMAND [options]   (pss SUBCOMMAND 
                              "  sample     sample n, e, delta and g on a grid or at the points of a dataset\n"
                              "  glyphs     energy plots and best-fitting segments (Figures 4 and 5)\n"
                              "  mesh       the surface as triangles (polylines in 2D), only where it is defined\n"
+                             "  version    the versions of pss and VTK and the vector kernels in use (also --version)\n"
                              "\n"
                              "Files are read and written by extension: .vtp .vtu .vti .ply .pcd .csv .xyz (.stl .obj: written only)\n";
+
+// `pss --version`: what a bug report needs to say which build ran, including the copy of the
+// vector kernels the dispatcher chose on this CPU (PSS_SIMD=baseline forces the baseline one).
+int Version()
+{
+  std::cout << "pss " << PSS_VERSION << " (PointSetSurfaces)\n"
+            << "VTK " << vtkVersion::GetVTKVersion() << "\n"
+            << "SIMD " << pss::kernelInstructionSet() << "\n";
+  return 0;
+}
 
 // VTK's errors go to stderr as single lines, not to a popup or with the debug banner.
 class PlainOutputWindow : public vtkOutputWindow
@@ -665,6 +678,10 @@ int main(int argc, char** argv)
     return argc < 2 ? 2 : 0;
   }
   const std::string command = argv[1];
+  if (command == "--version" || command == "version")
+  {
+    return Version();
+  }
   const std::vector<std::string> args(argv + 2, argv + argc);
   try
   {

@@ -15,6 +15,7 @@ install(TARGETS PointSetSurfacesCore EXPORT PointSetSurfacesCore
   ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT development)
 file(GLOB pss_core_headers "${PROJECT_SOURCE_DIR}/filters/core/pss/*.h")
 list(FILTER pss_core_headers EXCLUDE REGEX "/NanoflannInternals\\.h$")  # private to PointIndex.cxx
+list(FILTER pss_core_headers EXCLUDE REGEX "/KernelDispatch\\.h$")  # private to the kernels' files
 install(FILES ${pss_core_headers} DESTINATION "${PSS_INSTALL_INCLUDEDIR}/pss" COMPONENT development)
 install(EXPORT PointSetSurfacesCore NAMESPACE PointSetSurfaces:: FILE PointSetSurfacesCoreTargets.cmake
   DESTINATION "${PSS_INSTALL_CMAKEDIR}" COMPONENT development)

@@ -2,7 +2,8 @@
 /**
  * @file PointSetSurfacesVTKUtilities.h
  * @brief Private helpers shared by the filters: conversions between VTK and the core, output
- *        arrays and cells. No mathematics lives here.
+ *        arrays and cells, the filters' field data and PrintSelf blocks. No mathematics and no
+ *        MPI live here (PointSetSurfacesDistributed.h holds the distributed protocol).
  */
 #ifndef PointSetSurfacesVTKUtilities_h
 #define PointSetSurfacesVTKUtilities_h
@@ -15,21 +16,11 @@
 
 #include "pss/Types.h"
 
-#include <climits>
-#include <cstdint>
-#include <functional>
-#include <string>
 #include <vector>
 
-class vtkAlgorithm;
-class vtkInformationVector;
 class vtkDataObject;
-class vtkMultiProcessController;
 class vtkObject;
-class vtkPointData;
-class vtkPointSet;
 class vtkPointSetSurface;
-class vtkPolyData;
 
 namespace pss_vtk
 {
@@ -64,165 +55,6 @@ vtkMTimeType LatestMTime(vtkMTimeType own, vtkObject* part);
 
 /// The "Surface:" block of the filters' PrintSelf.
 void PrintSurface(ostream& os, vtkIndent indent, vtkPointSetSurface* surface);
-
-/**
- * What every filter does first: prepares @p surface on @p cloud, reporting a missing surface or a
- * failed Prepare() as an error of @p algorithm ("cannot define the surface<what>: ...") and
- * returning false, and warning when cloud points with NaN/Inf coordinates were left out.
- * Unless @p gathered says that @p cloud is already the whole cloud of every rank (GatherCloud),
- * an MPI run of more than one process is refused: each rank would take its piece for the whole.
- * @p coordinateOrder: vtkPointSetSurface::Prepare(cloud, coordinateOrder).
- */
-bool PrepareSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkPointSet* cloud, const char* what = "",
-  bool gathered = false, bool coordinateOrder = false);
-
-/// The global vtkMultiProcessController when this process is one of several (an MPI run of more
-/// than one process), else nullptr.
-vtkMultiProcessController* MultiProcessController();
-
-/**
- * PrepareSurface for a filter that runs distributed. With @p controller (an MPI run) it is
- * collective: every rank's @p cloud is gathered into @p gathered (GatherCloud) and the surface
- * prepared on that, so every rank gets the one-process surface or the same error. Without, the
- * surface is prepared on @p cloud and @p gathered released.
- */
-bool PrepareDistributedSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
-  vtkMultiProcessController* controller, vtkPointSet* cloud, const char* what, vtkSmartPointer<vtkPolyData>& gathered,
-  bool coordinateOrder = false);
-
-/// Where every rank's items go in an AllGatherV of @p length items from this rank.
-struct GatherLayout
-{
-  std::vector<vtkIdType> Lengths; ///< per rank
-  std::vector<vtkIdType> Offsets; ///< per rank, in rank order
-  vtkIdType Total = 0;
-  /// MPI counts are ints: beyond this the exchange cannot be one message (every rank knows Total,
-  /// so all of them find it together).
-  bool FitsOneMessage() const { return Total <= vtkIdType(INT_MAX); }
-};
-
-/// Collective over @p controller: one AllGather of every rank's @p length. (Not const where used:
-/// vtkMultiProcessController's AllGatherV and GatherV take the counts by non-const pointer.)
-GatherLayout LayoutOfAllGather(vtkMultiProcessController* controller, vtkIdType length);
-
-/**
- * Collective over @p controller: every rank's @p cloud points (nullptr counts as none) as one
- * double-precision point set on every rank, ranks in order, each rank's points in their order,
- * NaN/Inf points included (Prepare sets them aside and counts them as in one process). So the
- * surface, its automatic h, centroid and bounds are bitwise those of the one-process run over the
- * pieces concatenated. Returns nullptr on every rank (after an error of @p algorithm) when the
- * cloud has more coordinates than one MPI message holds (2^31 - 1).
- */
-vtkSmartPointer<vtkPolyData> GatherCloud(
-  vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud);
-
-/**
- * What the ranks of a run with ghost points (GhostMargin > 0) share, from BeginGhostRun(): the
- * finite cloud's bounds and centroid over every rank, its dimension and h (all as one process
- * computes them), and this rank's own finite cloud points, which it sends to the ranks that ask.
- */
-struct GhostRun
-{
-  double H = 0.0;
-  double Lo[3] = { 0.0, 0.0, 0.0 };
-  double Hi[3] = { 0.0, 0.0, 0.0 };
-  double Centroid[3] = { 0.0, 0.0, 0.0 };
-  int Dimension = 3;
-  std::vector<double> Own; ///< x, y, z of this rank's finite cloud points
-  vtkIdType Ghosts = 0;    ///< other ranks' points the last PrepareGhostSurface() received
-};
-
-/**
- * Collective over @p controller: the GhostRun of every rank's @p cloud. The centroid is summed in
- * rank order along a chain of the ranks, so it is bitwise the one-process centroid; the automatic
- * h (AutomaticScale on) is the one-process estimate, made on rank 0 over the finite points
- * gathered there for the purpose (so rank 0 holds the whole cloud for a moment). On an empty
- * cloud (or one with no finite point, or an automatic h of 0) every rank reports the one-process
- * error and returns false; otherwise it warns, on every rank, of the cloud points left out for
- * NaN/Inf as one process does.
- */
-bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMultiProcessController* controller,
-  vtkPointSet* cloud, GhostRun& run);
-
-/**
- * Collective over @p controller: prepares @p surface on this rank's own points plus every other
- * rank's points inside the box [@p lo, @p hi] (lo[0] > hi[0]: none, and the surface is left as
- * it is), complete inside that box (vtkPointSetSurface::PreparePiece). The parameters are
- * checked alike on every rank, so all fail or none. Returns false after an error of
- * @p algorithm.
- */
-bool PrepareGhostSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surface,
-  vtkMultiProcessController* controller, GhostRun& run, const double lo[3], const double hi[3]);
-
-/// Coordinates of a ghost run's point @p k (RunGhostRounds).
-using GhostPointAt = std::function<void(std::uint32_t k, double x[3])>;
-
-/// Evaluates a ghost run's points @p ks in that order on the surface as prepared, setting
-/// escaped[k] for each when its evaluation read beyond the complete region
-/// (pss::Workspace::leftCompleteRegion). Returns false after reporting an error.
-using GhostEvaluation = std::function<bool(const std::vector<std::uint32_t>& ks, std::vector<unsigned char>& escaped)>;
-
-/**
- * Collective over @p controller: evaluates this rank's points @p ks (indices below @p n) with
- * ghost points, in rounds. Round 1 prepares @p surface (PrepareGhostSurface) in the box of the
- * points grown by @p margin and evaluates them all; each later round doubles the margin around
- * the points whose evaluation escaped, on any rank, and evaluates those again. Once a box holds
- * the cloud's bounds no read can leave it, so the rounds end. A rank without a surface yet (no
- * cloud point in its box) counts its points as escaped. When preparing its surface or @p evaluate
- * fails on one rank, every rank fails. Returns the rounds taken, 0 after an error of @p algorithm.
- */
-int RunGhostRounds(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMultiProcessController* controller,
-  GhostRun& run, double margin, std::vector<std::uint32_t> ks, std::size_t n, const GhostPointAt& pointAt,
-  const GhostEvaluation& evaluate);
-
-/// Field data `GhostRounds` (@p rounds) and `GhostPoints` (the other ranks' points this rank held
-/// in its last round: its memory overhead) of a filter's @p output after RunGhostRounds.
-void AddGhostFieldData(vtkDataObject* output, int rounds, const GhostRun& run);
-
-/**
- * Notices the errors that the pipeline upstream of a distributed filter reports on this rank
- * (through vtkOutputWindow, whose messages it counts). Why: a reader that cannot read its piece
- * may still report success with fewer points (VTK 9.2's XML P-readers do), and the other ranks
- * would then compute over part of the cloud, silently. Arm() in RequestUpdateExtent, which the
- * executive calls before the upstream RequestData; Check() in RequestData.
- */
-class UpstreamErrorWatch
-{
-public:
-  /// Errors reported from now until Check() come from the pipeline upstream.
-  void Arm();
-  /**
-   * The errors reported since Arm() (the last line of each, "vtkClass (0x...): text", joined by
-   * "; "), which are then recorded against each of @p inputs; else the error recorded earlier, by any filter of
-   * this process, against one of @p inputs still unchanged (so that a filter added later, whose
-   * upstream does not execute again, still sees it); else empty.
-   */
-  std::string Check(const std::vector<vtkDataObject*>& inputs);
-
-private:
-  std::uint64_t Mark = 0;
-  bool Armed = false;
-};
-
-/**
- * Collective over @p controller: true on every rank when no rank's @p upstreamError (from
- * UpstreamErrorWatch::Check) is set; otherwise false on every rank after the same error of
- * @p algorithm on each, naming the ranks that had one (their logs hold the upstream error).
- */
-bool AgreeOnInputs(vtkAlgorithm* algorithm, vtkMultiProcessController* controller, const std::string& upstreamError);
-
-/// Collective over @p controller (when not nullptr; else true at once): AgreeOnInputs on what
-/// @p watch finds against every input of @p algorithm (@p inputVector, as RequestData has it).
-bool UpstreamSucceededEverywhere(vtkAlgorithm* algorithm, vtkInformationVector** inputVector,
-  vtkMultiProcessController* controller, UpstreamErrorWatch& watch);
-
-/// Unless @p pd has global ids already, gives its @p n tuples the global ids first, first + 1, ...
-/// as `GlobalPointIds` (the distributed filters' outputs, gathered, then match one process's).
-void AddGlobalPointIds(vtkPointData* pd, vtkIdType first, vtkIdType n);
-
-/// Collective over @p controller: the number of items on the ranks before this one (each rank
-/// has @p count), i.e. the global id of this rank's first item when pieces are concatenated.
-vtkIdType GlobalOffset(vtkMultiProcessController* controller, vtkIdType count);
 
 }
 

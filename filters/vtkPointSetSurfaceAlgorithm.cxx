@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPointSetSurfaceAlgorithm.h"
 
+#include "PointSetSurfacesDistributedRun.h"
+#include "PointSetSurfacesErrorWatch.h"
 #include "PointSetSurfacesVTKUtilities.h"
 #include "vtkPointSetSurface.h"
 
@@ -48,21 +50,15 @@ int vtkPointSetSurfaceAlgorithm::RequestUpdateExtent(
   return this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
 }
 
-bool vtkPointSetSurfaceAlgorithm::UpstreamSucceededEverywhere(
-  vtkInformationVector** inputVector, vtkMultiProcessController* controller)
+bool vtkPointSetSurfaceAlgorithm::PrepareRun(
+  pss_vtk::DistributedRun& run, vtkInformationVector** inputVector, vtkPointSet* cloud)
 {
-  return pss_vtk::UpstreamSucceededEverywhere(this, inputVector, controller, *this->UpstreamWatch);
+  return run.Prepare(inputVector, *this->UpstreamWatch, cloud, "", this->GatheredCloud);
 }
 
 vtkMultiProcessController* vtkPointSetSurfaceAlgorithm::DistributedController() const
 {
   return this->SupportsDistributedRun() ? pss_vtk::MultiProcessController() : nullptr;
-}
-
-bool vtkPointSetSurfaceAlgorithm::PrepareSurface(vtkPointSet* cloud, const char* what, bool coordinateOrder)
-{
-  return pss_vtk::PrepareDistributedSurface(
-    this, this->Surface, this->DistributedController(), cloud, what, this->GatheredCloud, coordinateOrder);
 }
 
 void vtkPointSetSurfaceAlgorithm::PrintSelf(ostream& os, vtkIndent indent)

@@ -29,6 +29,7 @@ class vtkPointSetSurface;
 class vtkPolyData;
 namespace pss_vtk
 {
+class DistributedRun;
 class UpstreamErrorWatch;
 }
 
@@ -59,22 +60,11 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /**
-   * Collective in a distributed update (@p controller not nullptr): false on every rank, after an
-   * error, when the pipeline upstream reported an error on any rank during this update (e.g. a
-   * reader that could not read its piece but returned the others). Call first in RequestData.
+   * What RequestData does first: pss_vtk::DistributedRun::Prepare on @p cloud with this filter's
+   * upstream watch, gathering the cloud into GatheredCloud in a distributed run. Collective in a
+   * distributed update; false on every rank after the same error.
    */
-  bool UpstreamSucceededEverywhere(vtkInformationVector** inputVector, vtkMultiProcessController* controller);
-
-  /**
-   * Prepares the surface on @p cloud; on failure reports an error ("cannot define the
-   * surface<what>: ...") and returns false. Warns when cloud points with NaN or infinite
-   * coordinates were left out. In a distributed run (DistributedController()) it is collective:
-   * the surface is prepared on every rank's cloud gathered, so every rank gets the one-process
-   * surface, or the same error; other filters refuse a run of more than one process.
-   * @p coordinateOrder: neighbourhoods summed in coordinate order (what a filter whose
-   * GhostMargin is above 0 asks, so that its one-process run equals its runs with ghost points).
-   */
-  bool PrepareSurface(vtkPointSet* cloud, const char* what = "", bool coordinateOrder = false);
+  bool PrepareRun(pss_vtk::DistributedRun& run, vtkInformationVector** inputVector, vtkPointSet* cloud);
 
   /**
    * Whether this filter gives the one-process result in an MPI run of several processes, each

@@ -2,18 +2,17 @@
 #include "vtkPointSetSurfaceEnergyGlyphs.h"
 
 #include "PointSetSurfacesSMP.h"
+#include "PointSetSurfacesDistributedRun.h"
 #include "PointSetSurfacesVTKUtilities.h"
 #include "vtkPointSetSurface.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
-#include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
-#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
@@ -123,34 +122,24 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   // In a distributed run each rank plots its own samples (its piece of the sample points, or of
   // the cloud) on the gathered cloud, or with ghost points; sample ids and the global scale are
   // those of one process.
-  vtkMultiProcessController* controller = this->DistributedController();
-  const bool ghosts = controller && this->GhostMargin > 0.0;
-  pss_vtk::GhostRun run;
-  if (!this->UpstreamSucceededEverywhere(inputVector, controller) ||
-    (ghosts ? !pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run)
-            : !this->PrepareSurface(cloud, "", this->GhostMargin > 0.0)))
+  pss_vtk::DistributedRun run(this, this->Surface, this->DistributedController(), this->GhostMargin);
+  if (!this->PrepareRun(run, inputVector, cloud))
   {
     return 0;
   }
+  const bool ghosts = run.HasGhosts();
   const vtkIdType sampleCount = samples ? samples->GetNumberOfPoints() : 0;
-  const vtkIdType firstSampleId = controller ? pss_vtk::GlobalOffset(controller, sampleCount) : 0;
+  const vtkIdType firstSampleId = run.FirstGlobalId(sampleCount);
   const bool perGlyph = this->ScaleMode == SCALE_PER_GLYPH;
   // Collective in a distributed SCALE_GLOBAL run, so every rank calls it once, samples or not.
-  auto largestOfAllRanks = [&](double largest) {
-    double all = largest;
-    if (controller && !perGlyph)
-    {
-      controller->AllReduce(&largest, &all, 1, vtkCommunicator::MAX_OP);
-    }
-    return all;
-  };
+  auto largestOfAllRanks = [&](double largest) { return perGlyph ? largest : run.MaximumOverRanks(largest); };
   if (sampleCount == 0 && !ghosts)
   {
     largestOfAllRanks(0.0);
     return 1; // nothing to plot: empty outputs
   }
 
-  const int dimension = ghosts ? run.Dimension : this->Surface->GetDefinition()->dimension();
+  const int dimension = run.GetDimension();
   const DirectionSet set = dimension == 2 ? CircleDirections(this->Resolution) : SphereDirections(this->Resolution);
   const std::vector<pss::Vec3>& dirs = set.directions;
   const std::size_t nDirs = dirs.size();
@@ -189,49 +178,44 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
       value[k] = surface.energy(xs[s], dirs[d], ws);
     }
   };
+  // A glyph at a time, so that with ghost points each sample knows whether any of its reads left
+  // the region; in one process (or on the gathered cloud) the normals, then every energy.
   bool completed = true;
-  if (ghosts)
-  {
-    // A glyph at a time, so that each sample knows whether any of its reads left the region.
-    auto plot = [&](const std::vector<std::uint32_t>& ks, std::vector<unsigned char>& escaped) {
-      const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
-      completed = pss::forEachInOrder(ks, pss_vtk::SMPLoop(this), [&](std::size_t s, pss::Workspace& ws) {
-        ws.leftCompleteRegion = false;
-        normals[s] = surface.direction(xs[s], ws);
-        for (std::size_t d = 0; d < nDirs; ++d)
-        {
-          energyAt(surface, s * nDirs + d, ws);
-        }
-        escaped[s] = ws.leftCompleteRegion ? 1 : 0;
-      }) && completed;
-      return true;
-    };
-    std::vector<std::uint32_t> order(m);
-    std::iota(order.begin(), order.end(), 0u);
-    this->GhostRounds = pss_vtk::RunGhostRounds(this, this->Surface, controller, run, this->GhostMargin * run.H,
-      std::move(order), m, [&xs](std::uint32_t k, double x[3]) { std::copy(xs[k].data(), xs[k].data() + 3, x); },
-      plot);
-    if (this->GhostRounds == 0)
-    {
-      return 0;
-    }
-  }
-  else
-  {
+  auto plot = [&](const std::vector<std::uint32_t>& ks, std::vector<unsigned char>& escaped) {
     const pss::SurfaceDefinition& surface = *this->Surface->GetDefinition();
-    completed = pss_vtk::ParallelFor(
-                  this, static_cast<vtkIdType>(m),
-                  [&](vtkIdType s, pss::Workspace& ws) { normals[s] = surface.direction(xs[s], ws); }, 0.0, 0.1) &&
-      pss_vtk::ParallelFor(this, static_cast<vtkIdType>(m * nDirs),
-        [&](vtkIdType k, pss::Workspace& ws) { energyAt(surface, static_cast<std::size_t>(k), ws); }, 0.1, 0.9);
+    if (!ghosts)
+    {
+      completed = pss_vtk::ParallelFor(
+                    this, static_cast<vtkIdType>(m),
+                    [&](vtkIdType s, pss::Workspace& ws) { normals[s] = surface.direction(xs[s], ws); }, 0.0, 0.1) &&
+        pss_vtk::ParallelFor(this, static_cast<vtkIdType>(m * nDirs),
+          [&](vtkIdType k, pss::Workspace& ws) { energyAt(surface, static_cast<std::size_t>(k), ws); }, 0.1, 0.9);
+      return true;
+    }
+    completed = pss::forEachInOrder(ks, pss_vtk::SMPLoop(this), [&](std::size_t s, pss::Workspace& ws) {
+      ws.leftCompleteRegion = false;
+      normals[s] = surface.direction(xs[s], ws);
+      for (std::size_t d = 0; d < nDirs; ++d)
+      {
+        energyAt(surface, s * nDirs + d, ws);
+      }
+      escaped[s] = ws.leftCompleteRegion ? 1 : 0;
+    }) && completed;
+    return true;
+  };
+  const auto sampleAt = [&xs](std::uint32_t k, double x[3]) { std::copy(xs[k].data(), xs[k].data() + 3, x); };
+  if (!run.EvaluateAll(m, sampleAt, plot))
+  {
+    return 0;
   }
+  this->GhostRounds = run.GetRounds();
   if (!completed)
   {
     largestOfAllRanks(0.0);
     return 1; // aborted: leave the outputs empty
   }
   // (With ghost points a rank without samples may have no surface of its own.)
-  const double h = ghosts ? run.H : this->Surface->GetEffectiveScale();
+  const double h = run.GetScale();
 
   // Radius of every glyph point: c e(x, a) (global) or the per-glyph normalization.
   std::vector<double> radius(m * nDirs, 0.0);
@@ -317,9 +301,7 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   auto fitNormal = pss_vtk::NewArray<vtkDoubleArray>("Normal", 0, 3);
   auto fitStability = pss_vtk::NewArray<vtkDoubleArray>("Stability", 0, 1);
   auto fitSample = pss_vtk::NewArray<vtkIdTypeArray>("SampleId", 0, 1);
-  const pss::Orientation orientation = ghosts
-    ? pss::Orientation::awayFrom(pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]))
-    : pss::Orientation::awayFromCentroid(*this->Surface->GetIndex());
+  const pss::Orientation orientation = pss::Orientation::awayFrom(run.GetCentroid());
   const double half = this->SegmentLength * h;
   std::vector<vtkIdType> ids;
   for (std::size_t s = 0; s < m; ++s)
@@ -418,11 +400,8 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   fits->GetCellData()->AddArray(fitNormal);
   fits->GetCellData()->AddArray(fitStability);
   fits->GetCellData()->AddArray(fitSample);
-  if (ghosts)
-  {
-    pss_vtk::AddGhostFieldData(glyphs, this->GhostRounds, run);
-    pss_vtk::AddGhostFieldData(fits, this->GhostRounds, run);
-  }
+  run.AttachGhostFieldData(glyphs);
+  run.AttachGhostFieldData(fits);
   return 1;
 }
 

@@ -3,6 +3,8 @@
 
 #include "PointSetSurfacesFieldEvaluation.h"
 #include "PointSetSurfacesSMP.h"
+#include "PointSetSurfacesDistributedRun.h"
+#include "PointSetSurfacesErrorWatch.h"
 #include "PointSetSurfacesVTKUtilities.h"
 #include "vtkPointSetSurface.h"
 
@@ -357,22 +359,11 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
                   << " (MPI): use AWAY_FROM_CENTROID or ALONG_DIRECTION, or run in one process");
     return 0;
   }
-  if (!pss_vtk::UpstreamSucceededEverywhere(this, inputVector, controller, *this->UpstreamWatch))
-  {
-    return 0;
-  }
+  // Prepare: the surface (gathered cloud or ghost run), the global id of this rank's first probe
+  // point, the orientation and where the samples are.
   this->GhostRounds = 0;
-  const bool ghosts = controller && this->GhostMargin > 0.0;
-  pss_vtk::GhostRun run;
-  if (ghosts)
-  {
-    if (!pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run))
-    {
-      return 0;
-    }
-  }
-  else if (!pss_vtk::PrepareDistributedSurface(
-             this, this->Surface, controller, cloud, " from the source", this->GatheredCloud, this->GhostMargin > 0.0))
+  pss_vtk::DistributedRun run(this, this->Surface, controller, this->GhostMargin);
+  if (!run.Prepare(inputVector, *this->UpstreamWatch, cloud, " from the source", this->GatheredCloud))
   {
     return 0;
   }
@@ -380,17 +371,17 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
   {
     cloud = this->GatheredCloud;
   }
-  // Collective, so taken before any rank may stop: global ids of this rank's probe points.
-  const vtkIdType firstGlobalId = controller && !this->GenerateSamplingGrid
-    ? pss_vtk::GlobalOffset(controller, input ? input->GetNumberOfPoints() : 0)
-    : 0;
+  // Collective, so taken before any rank may stop.
+  const vtkIdType firstGlobalId =
+    this->GenerateSamplingGrid ? 0 : run.FirstGlobalId(input ? input->GetNumberOfPoints() : 0);
+  const bool ghosts = run.HasGhosts();
+  const pss_vtk::GhostRun& ghost = run.GetGhostRun();
 
   pss::Orientation orientation;
   std::string error;
   const int rule = this->OrientationMode == PROPAGATE ? pss_vtk::ORIENT_AWAY_FROM_CENTROID : this->OrientationMode;
-  const pss::Vec3 centroid =
-    ghosts ? pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]) : this->Surface->GetIndex()->centroid();
-  if (!pss_vtk::MakeOrientation(rule, this->ReferencePoint, this->ReferenceDirection, centroid, orientation, error))
+  if (!pss_vtk::MakeOrientation(
+        rule, this->ReferencePoint, this->ReferenceDirection, run.GetCentroid(), orientation, error))
   {
     vtkErrorMacro(<< error);
     return 0;
@@ -400,7 +391,7 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
   if (this->GenerateSamplingGrid)
   {
     double origin[3], spacing[3];
-    const bool geometry = ghosts ? this->ComputeGridGeometry(run.Lo, run.Hi, run.H, origin, spacing, false)
+    const bool geometry = ghosts ? this->ComputeGridGeometry(ghost.Lo, ghost.Hi, ghost.H, origin, spacing, false)
                                  : this->ComputeGridGeometry(cloud, origin, spacing, false);
     if (!this->CheckSampleDimensions() || !geometry ||
       !this->SetUpSamplingGrid(vtkImageData::SafeDownCast(output), origin, spacing, outInfo))
@@ -501,28 +492,13 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
     }
     return true;
   };
-  if (ghosts)
+  const auto sampleAt = [output](std::uint32_t k, double x[3]) { output->GetPoint(static_cast<vtkIdType>(k), x); };
+  if (!run.EvaluateAll(static_cast<std::size_t>(n), sampleAt, sample))
   {
-    std::vector<std::uint32_t> all(static_cast<std::size_t>(n));
-    std::iota(all.begin(), all.end(), 0u);
-    this->GhostRounds = pss_vtk::RunGhostRounds(this, this->Surface, controller, run,
-      this->GhostMargin * run.H, std::move(all), static_cast<std::size_t>(n),
-      [output](std::uint32_t k, double x[3]) { output->GetPoint(static_cast<vtkIdType>(k), x); }, sample);
-    if (this->GhostRounds == 0)
-    {
-      output->Initialize();
-      return 0;
-    }
+    output->Initialize();
+    return 0;
   }
-  else
-  {
-    std::vector<unsigned char> none;
-    if (!sample({}, none))
-    {
-      output->Initialize();
-      return 0;
-    }
-  }
+  this->GhostRounds = run.GetRounds();
   if (aborted)
   {
     output->Initialize(); // aborted: leave the output empty
@@ -556,14 +532,11 @@ int vtkPointSetSurfaceFieldSampler::RequestData(
   // arrays, which are passed through.
   outPD->SetActiveVectors(normal->GetName());
   outPD->SetActiveScalars(g->GetName());
-  if (controller && !this->GenerateSamplingGrid)
+  if (!this->GenerateSamplingGrid)
   {
-    pss_vtk::AddGlobalPointIds(outPD, firstGlobalId, n);
+    run.AttachGlobalIds(outPD, firstGlobalId, n);
   }
-  if (ghosts)
-  {
-    pss_vtk::AddGhostFieldData(output, this->GhostRounds, run);
-  }
+  run.AttachGhostFieldData(output);
   return 1;
 }
 

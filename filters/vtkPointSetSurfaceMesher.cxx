@@ -2,11 +2,11 @@
 #include "vtkPointSetSurfaceMesher.h"
 
 #include "PointSetSurfacesSMP.h"
+#include "PointSetSurfacesDistributedRun.h"
 #include "PointSetSurfacesVTKUtilities.h"
 #include "vtkPointSetSurface.h"
 
 #include "vtkCellArray.h"
-#include "vtkCommunicator.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
@@ -205,46 +205,18 @@ void KeepShareOfCells(vtkPolyData* mesh, const pss::StageSplit& split)
 }
 }
 
-namespace
-{
-
-// Every rank's occupied cell keys, merged (a band that depends on no rank's split). False, with
-// @p tooLarge, beyond one MPI message.
-bool GatherCellKeys(vtkMultiProcessController* controller, const std::vector<std::uint64_t>& own,
-  std::vector<std::uint64_t>& all, bool& tooLarge)
-{
-  const vtkIdType length = static_cast<vtkIdType>(own.size());
-  pss_vtk::GatherLayout layout = pss_vtk::LayoutOfAllGather(controller, length);
-  if (!layout.FitsOneMessage())
-  {
-    tooLarge = true;
-    return false;
-  }
-  // Keys are below 2^60, so they travel as vtkIdType (64-bit) unchanged.
-  const std::vector<vtkIdType> mine(own.begin(), own.end());
-  std::vector<vtkIdType> received(static_cast<std::size_t>(layout.Total));
-  controller->AllGatherV(mine.data(), received.data(), length, layout.Lengths.data(), layout.Offsets.data());
-  all.assign(received.begin(), received.end());
-  return true;
-}
-
-} // namespace
-
 int vtkPointSetSurfaceMesher::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkPointSet* cloud = vtkPointSet::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
-  vtkMultiProcessController* controller = this->DistributedController();
-  const bool ghosts = controller && this->GhostMargin > 0.0;
   this->GhostRounds = 0;
-  pss_vtk::GhostRun run;
-  if (!this->UpstreamSucceededEverywhere(inputVector, controller) ||
-    (ghosts ? !pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run)
-            : !this->PrepareSurface(cloud, "", this->GhostMargin > 0.0)))
+  pss_vtk::DistributedRun run(this, this->Surface, this->DistributedController(), this->GhostMargin);
+  if (!this->PrepareRun(run, inputVector, cloud))
   {
     return 0;
   }
+  vtkMultiProcessController* controller = run.GetController();
   pss::MeshOptions options;
   options.cellSize = this->CellSize;
   options.band = this->Band;
@@ -261,48 +233,16 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.domain.maxNormalAngle = this->MaxNormalAngle;
   // In a distributed run every rank builds the same band; each computes its block of the corners,
   // of the crossings and of the holes' centres, and the blocks are exchanged after each stage.
-  pss::StageSplit split;
   bool tooLarge = false;
-  if (controller)
-  {
-    split.part = controller->GetLocalProcessId();
-    split.parts = controller->GetNumberOfProcesses();
-    split.share = [&](std::vector<double>& items, std::size_t width, std::size_t count, bool completed) {
-      int mine = completed ? 1 : 0;
-      int all = 0;
-      controller->AllReduce(&mine, &all, 1, vtkCommunicator::MIN_OP);
-      if (!all)
-      {
-        return false;
-      }
-      if (count * width > static_cast<std::size_t>(INT_MAX)) // the same count on every rank
-      {
-        tooLarge = true;
-        return false;
-      }
-      std::vector<vtkIdType> lengths(static_cast<std::size_t>(split.parts));
-      std::vector<vtkIdType> offsets(lengths.size());
-      for (int r = 0; r < split.parts; ++r)
-      {
-        const pss::StageSplit part{ r, split.parts, nullptr };
-        offsets[static_cast<std::size_t>(r)] = static_cast<vtkIdType>(part.begin(count) * width);
-        lengths[static_cast<std::size_t>(r)] = static_cast<vtkIdType>((part.end(count) - part.begin(count)) * width);
-      }
-      const auto first = items.begin() + offsets[static_cast<std::size_t>(split.part)];
-      const std::vector<double> own(first, first + lengths[static_cast<std::size_t>(split.part)]);
-      controller->AllGatherV(own.data(), items.data(), static_cast<vtkIdType>(own.size()), lengths.data(),
-        offsets.data());
-      return true;
-    };
-  }
+  const pss::StageSplit split = controller ? pss_vtk::SplitAcrossRanks(controller, tooLarge) : pss::StageSplit();
   std::optional<pss::SurfaceMesh> mesh;
   pss::MeshTimings t;
   bool failed = false;
   try
   {
-    if (ghosts)
+    if (run.HasGhosts())
     {
-      mesh = this->MeshWithGhostPoints(controller, run, options, split, t, tooLarge, failed);
+      mesh = this->MeshWithGhostPoints(run, options, split, t, tooLarge, failed);
     }
     else
     {
@@ -337,16 +277,10 @@ int vtkPointSetSurfaceMesher::RequestData(
          << t.contour << " s, projection " << t.projection << " s, finish " << t.finish << " s, output " << write
          << " s";
   this->TimingReport = timing.str();
-  if (ghosts)
-  {
-    // The one-process h and dimension: a rank whose last block was empty prepared no surface.
-    pss_vtk::AddSurfaceFieldData(output, run.H, run.Dimension);
-    pss_vtk::AddGhostFieldData(output, this->GhostRounds, run);
-  }
-  else
-  {
-    pss_vtk::AddSurfaceFieldData(output, this->Surface);
-  }
+  // With ghost points, the one-process h and dimension: a rank whose last block was empty
+  // prepared no surface.
+  run.AttachSurfaceFieldData(output);
+  run.AttachGhostFieldData(output);
   for (const auto& entry : { std::make_pair("CellSize", this->CellSize), std::make_pair("Band", this->Band) })
   {
     auto a = pss_vtk::NewArray<vtkDoubleArray>(entry.first, 1, 1);
@@ -361,22 +295,22 @@ int vtkPointSetSurfaceMesher::RequestData(
   return 1;
 }
 
-std::optional<pss::SurfaceMesh> vtkPointSetSurfaceMesher::MeshWithGhostPoints(vtkMultiProcessController* controller,
-  pss_vtk::GhostRun& run, const pss::MeshOptions& options, const pss::StageSplit& split, pss::MeshTimings& t,
-  bool& tooLarge, bool& failed)
+std::optional<pss::SurfaceMesh> vtkPointSetSurfaceMesher::MeshWithGhostPoints(pss_vtk::DistributedRun& run,
+  const pss::MeshOptions& options, const pss::StageSplit& split, pss::MeshTimings& t, bool& tooLarge, bool& failed)
 {
   const auto start = std::chrono::steady_clock::now();
+  const pss_vtk::GhostRun& ghost = run.GetGhostRun();
   // Sized from the reduced bounds and h (the same frame on every rank), so it throws alike.
-  const pss::MeshFrame frame{ run.Dimension, run.H, pss::Vec3(run.Lo[0], run.Lo[1], run.Lo[2]),
-    pss::Vec3(run.Hi[0], run.Hi[1], run.Hi[2]), pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]) };
+  const pss::MeshFrame frame{ ghost.Dimension, ghost.H, pss::Vec3(ghost.Lo[0], ghost.Lo[1], ghost.Lo[2]),
+    pss::Vec3(ghost.Hi[0], ghost.Hi[1], ghost.Hi[2]), run.GetCentroid() };
   pss::SurfaceMesher mesher(frame, options);
-  std::vector<pss::Vec3> own(run.Own.size() / 3);
+  std::vector<pss::Vec3> own(ghost.Own.size() / 3);
   for (std::size_t i = 0; i < own.size(); ++i)
   {
-    own[i] = pss::Vec3(run.Own[3 * i], run.Own[3 * i + 1], run.Own[3 * i + 2]);
+    own[i] = pss::Vec3(ghost.Own[3 * i], ghost.Own[3 * i + 1], ghost.Own[3 * i + 2]);
   }
   std::vector<std::uint64_t> occupied;
-  if (!GatherCellKeys(controller, mesher.cellKeysOf(own), occupied, tooLarge))
+  if (!pss_vtk::GatherCellKeys(run.GetController(), mesher.cellKeysOf(own), occupied, tooLarge))
   {
     return std::nullopt;
   }
@@ -393,30 +327,26 @@ std::optional<pss::SurfaceMesh> vtkPointSetSurfaceMesher::MeshWithGhostPoints(vt
       {
         ks.push_back(static_cast<std::uint32_t>(k));
       }
-      const int rounds = pss_vtk::RunGhostRounds(this, this->Surface, controller, run, this->GhostMargin * run.H,
-        std::move(ks), stage.count,
-        [&](std::uint32_t k, double x[3]) {
-          const pss::Vec3 p = stage.position(k);
-          x[0] = p.x();
-          x[1] = p.y();
-          x[2] = p.z();
-        },
-        [&](const std::vector<std::uint32_t>& todo, std::vector<unsigned char>& escaped) {
-          // Aborting is not offered: every rank goes on, so that none waits.
-          mesher.useSurface(*this->Surface->GetDefinition());
-          pss::forEachInOrder(todo, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
-            ws.leftCompleteRegion = false;
-            (mesher.*stage.evaluate)(k, ws);
-            escaped[k] = ws.leftCompleteRegion ? 1 : 0;
-          });
-          return true;
+      const auto positionAt = [&](std::uint32_t k, double x[3]) {
+        const pss::Vec3 p = stage.position(k);
+        std::copy(p.data(), p.data() + 3, x);
+      };
+      const auto evaluate = [&](const std::vector<std::uint32_t>& todo, std::vector<unsigned char>& escaped) {
+        // Aborting is not offered: every rank goes on, so that none waits.
+        mesher.useSurface(*this->Surface->GetDefinition());
+        pss::forEachInOrder(todo, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
+          ws.leftCompleteRegion = false;
+          (mesher.*stage.evaluate)(k, ws);
+          escaped[k] = ws.leftCompleteRegion ? 1 : 0;
         });
-      if (rounds == 0)
+        return true;
+      };
+      if (!run.Evaluate(std::move(ks), stage.count, positionAt, evaluate))
       {
         failed = true;
         return false;
       }
-      this->GhostRounds = std::max(this->GhostRounds, rounds);
+      this->GhostRounds = run.GetRounds();
       std::vector<double> items = (mesher.*stage.get)();
       if (!split.share(items, stage.width, stage.count, true))
       {

@@ -51,7 +51,7 @@ struct SurfaceMesh;
 }
 namespace pss_vtk
 {
-struct GhostRun;
+class DistributedRun;
 }
 
 class POINTSETSURFACESFILTERS_EXPORT vtkPointSetSurfaceMesher : public vtkPointSetSurfaceAlgorithm
@@ -218,9 +218,8 @@ protected:
   /// The distributed run with GhostMargin > 0: the mesh (every rank the same), or none after an
   /// error (@p failed; @p tooLarge: an exchange beyond one MPI message). Throws
   /// std::invalid_argument on every rank alike for an absurd band.
-  std::optional<pss::SurfaceMesh> MeshWithGhostPoints(vtkMultiProcessController* controller,
-    pss_vtk::GhostRun& run, const pss::MeshOptions& options, const pss::StageSplit& split, pss::MeshTimings& t,
-    bool& tooLarge, bool& failed);
+  std::optional<pss::SurfaceMesh> MeshWithGhostPoints(pss_vtk::DistributedRun& run, const pss::MeshOptions& options,
+    const pss::StageSplit& split, pss::MeshTimings& t, bool& tooLarge, bool& failed);
 #endif
 
   double CellSize = 1.0;

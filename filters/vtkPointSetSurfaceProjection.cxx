@@ -2,6 +2,7 @@
 #include "vtkPointSetSurfaceProjection.h"
 
 #include "PointSetSurfacesSMP.h"
+#include "PointSetSurfacesDistributedRun.h"
 #include "PointSetSurfacesVTKUtilities.h"
 #include "vtkPointSetSurface.h"
 
@@ -12,7 +13,6 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
-#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
@@ -169,44 +169,29 @@ int vtkPointSetSurfaceProjection::RequestData(
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* lines = vtkPolyData::GetData(outputVector, 1);
   this->GhostRounds = 0;
-  vtkMultiProcessController* controller = this->DistributedController();
-  const bool ghosts = controller && this->GhostMargin > 0.0;
   const vtkIdType n = starts ? starts->GetNumberOfPoints() : 0;
   vtkPoints* startPoints = n > 0 ? starts->GetPoints() : nullptr;
-  std::vector<std::uint32_t> order(static_cast<std::size_t>(n));
-  std::iota(order.begin(), order.end(), 0u);
-  pss_vtk::GhostRun run;
-  if (!this->UpstreamSucceededEverywhere(inputVector, controller) ||
-    (ghosts ? !pss_vtk::BeginGhostRun(this, this->Surface, controller, cloud, run)
-            : !this->PrepareSurface(cloud, "", this->GhostMargin > 0.0)))
+
+  // Prepare: the surface (gathered cloud or ghost run) and this rank's first global id.
+  pss_vtk::DistributedRun run(this, this->Surface, this->DistributedController(), this->GhostMargin);
+  if (!this->PrepareRun(run, inputVector, cloud))
   {
     return 0;
   }
-  // Collective, so taken before any rank may return early for lack of start points.
-  const vtkIdType firstGlobalId = controller ? pss_vtk::GlobalOffset(controller, n) : 0;
-  if (n == 0 && !ghosts)
+  const vtkIdType firstGlobalId = run.FirstGlobalId(n); // collective: before any early return
+  if (n == 0 && !run.HasGhosts())
   {
     return 1; // nothing to project: empty outputs
   }
+  std::vector<std::uint32_t> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), 0u);
+  const bool ordered = this->OrderStartPoints(starts, cloud, startPoints, run.GetController() != nullptr, order);
+  if (!ordered && !run.HasGhosts())
+  {
+    return 0;
+  }
 
-  bool ordered = true;
-  try
-  {
-    // Neighbours are visited together so that they share cached neighbourhoods. The indexed
-    // cloud's own points come in that order from the index at no cost (not in a distributed run:
-    // the index holds the gathered cloud or a piece with ghosts); other start points are sorted.
-    const pss::PointIndex* index = this->Surface->GetIndex();
-    const bool startsAreIndexed = starts == cloud && !controller && index &&
-      static_cast<vtkIdType>(index->size() + index->skippedCount()) == n;
-    const int threads = pss_vtk::CoreThreads();
-    order = startsAreIndexed ? index->visitingOrder()
-                             : pss::spatialOrder(pss_vtk::ToVectors(startPoints, threads), threads);
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< "cannot order the start points: " << e.what());
-    ordered = false;
-  }
+  // Evaluate: every start point projected in place into the output arrays.
   pss::ProjectionOptions options;
   options.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.seekMaxima = this->SeekMaxima;
@@ -214,10 +199,6 @@ int vtkPointSetSurfaceProjection::RequestData(
   options.tolerance = this->Tolerance;
   options.maxTravel = this->MaxTravel;
   StandardArrays arrays(n);
-  if (!ordered && !ghosts)
-  {
-    return 0;
-  }
   // Projects the starts @p ks on the surface as prepared; with ghost points, flags those whose
   // projection read beyond this rank's complete region. False: this rank cannot project (its
   // error reported), or the run was aborted (one process only: with ghosts every rank goes on
@@ -230,9 +211,7 @@ int vtkPointSetSurfaceProjection::RequestData(
       return false;
     }
     const pss::PointIndex& index = *this->Surface->GetIndex();
-    const pss::Orientation orientation = ghosts
-      ? pss::Orientation::awayFrom(pss::Vec3(run.Centroid[0], run.Centroid[1], run.Centroid[2]))
-      : pss::Orientation::awayFromCentroid(index);
+    const pss::Orientation orientation = pss::Orientation::awayFrom(run.GetCentroid());
     const bool completed =
       pss::forEachInOrder(ks, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
         const vtkIdType i = static_cast<vtkIdType>(k);
@@ -240,39 +219,28 @@ int vtkPointSetSurfaceProjection::RequestData(
         startPoints->GetPoint(i, start);
         ws.leftCompleteRegion = false;
         arrays.Set(i, this->ProjectPoint(i, start, *surface, options, ws), start, index, orientation);
-        if (ghosts)
+        if (run.HasGhosts())
         {
           escaped[k] = ws.leftCompleteRegion ? 1 : 0;
         }
       });
     aborted = !completed;
-    return completed || ghosts;
+    return completed || run.HasGhosts();
   };
-  if (ghosts)
+  const auto startAt = [startPoints](std::uint32_t k, double x[3]) {
+    startPoints->GetPoint(static_cast<vtkIdType>(k), x);
+  };
+  if (!run.Evaluate(std::move(order), static_cast<std::size_t>(n), startAt, project))
   {
-    this->GhostRounds = pss_vtk::RunGhostRounds(this, this->Surface, controller, run,
-      this->GhostMargin * run.H, std::move(order), static_cast<std::size_t>(n),
-      [startPoints](std::uint32_t k, double x[3]) { startPoints->GetPoint(static_cast<vtkIdType>(k), x); }, project);
-    if (this->GhostRounds == 0)
-    {
-      return 0;
-    }
+    return aborted && !run.HasGhosts() ? 1 : 0; // aborted: leave the outputs empty
   }
-  else
-  {
-    std::vector<unsigned char> none;
-    if (!project(order, none))
-    {
-      return aborted ? 1 : 0; // aborted: leave the outputs empty
-    }
-  }
-  order = std::vector<std::uint32_t>();
+  this->GhostRounds = run.GetRounds();
   if (n == 0)
   {
     return 1;
   }
-  const pss::PointIndex& index = *this->Surface->GetIndex();
 
+  // Attach: the arrays, the surface's field data, global ids and the projection lines.
   vtkIdType invalid = 0;
   for (vtkIdType i = 0; i < n; ++i)
   {
@@ -282,31 +250,48 @@ int vtkPointSetSurfaceProjection::RequestData(
   {
     vtkWarningMacro(<< invalid << " start point(s) have NaN or infinite coordinates: left in place, StopReason 4");
   }
-
   output->SetPoints(arrays.Points);
   output->SetVerts(pss_vtk::VertexCells(n));
   vtkPointData* outPD = output->GetPointData();
   outPD->PassData(starts->GetPointData());
   arrays.AddTo(outPD);
   pss_vtk::AddSurfaceFieldData(output, this->Surface);
-  if (ghosts)
-  {
-    pss_vtk::AddGhostFieldData(output, this->GhostRounds, run);
-  }
+  run.AttachGhostFieldData(output);
   if (!this->AddPointArrays(starts, outPD))
   {
     output->Initialize();
     return 0;
   }
-  if (controller)
-  {
-    pss_vtk::AddGlobalPointIds(outPD, firstGlobalId, n);
-  }
+  run.AttachGlobalIds(outPD, firstGlobalId, n);
   if (this->GenerateProjectionLines)
   {
-    FillProjectionLines(startPoints, arrays, index, lines);
+    FillProjectionLines(startPoints, arrays, *this->Surface->GetIndex(), lines);
   }
   return 1;
+}
+
+bool vtkPointSetSurfaceProjection::OrderStartPoints(vtkPointSet* starts, vtkPointSet* cloud, vtkPoints* startPoints,
+  bool distributed, std::vector<std::uint32_t>& order)
+{
+  try
+  {
+    // Neighbours are visited together so that they share cached neighbourhoods. The indexed
+    // cloud's own points come in that order from the index at no cost (not in a distributed run:
+    // the index holds the gathered cloud or a piece with ghosts); other start points are sorted.
+    const pss::PointIndex* index = this->Surface->GetIndex();
+    const vtkIdType n = startPoints ? startPoints->GetNumberOfPoints() : 0;
+    const bool startsAreIndexed = starts == cloud && !distributed && index &&
+      static_cast<vtkIdType>(index->size() + index->skippedCount()) == n;
+    const int threads = pss_vtk::CoreThreads();
+    order = startsAreIndexed ? index->visitingOrder()
+                             : pss::spatialOrder(pss_vtk::ToVectors(startPoints, threads), threads);
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "cannot order the start points: " << e.what());
+    return false;
+  }
 }
 
 void vtkPointSetSurfaceProjection::PrintSelf(ostream& os, vtkIndent indent)

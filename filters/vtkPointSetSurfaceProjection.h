@@ -39,10 +39,12 @@
 #include "PointSetSurfacesFiltersModule.h" // for export macro
 #include "vtkPointSetSurfaceAlgorithm.h"
 
-#include <vector> // for std::vector
+#include <cstdint> // for std::uint32_t
+#include <vector>  // for std::vector
 
 class vtkPointData;
 class vtkPointSet;
+class vtkPoints;
 
 #ifndef __VTK_WRAP__
 namespace pss
@@ -175,6 +177,10 @@ protected:
   int GhostRounds = 0;
 
 private:
+  // The order to project @p startPoints in (neighbours together); false after an error.
+  bool OrderStartPoints(vtkPointSet* starts, vtkPointSet* cloud, vtkPoints* startPoints, bool distributed,
+    std::vector<std::uint32_t>& order);
+
   vtkPointSetSurfaceProjection(const vtkPointSetSurfaceProjection&) = delete;
   void operator=(const vtkPointSetSurfaceProjection&) = delete;
 };

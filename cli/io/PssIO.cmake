@@ -9,7 +9,8 @@ set(PSS_IO_SOURCES
   "${CMAKE_CURRENT_LIST_DIR}/Table.cxx"
   "${CMAKE_CURRENT_LIST_DIR}/Text.cxx"
   "${CMAKE_CURRENT_LIST_DIR}/VtkXml.cxx"
-  "${CMAKE_CURRENT_LIST_DIR}/VtkXmlFile.cxx")
+  "${CMAKE_CURRENT_LIST_DIR}/VtkXmlFile.cxx"
+  "${CMAKE_CURRENT_LIST_DIR}/VtkXmlArrayData.cxx")
 # VTK::expat: VtkXmlFile.cxx asks expat, through vtkXMLDataParser's parser, what went wrong.
 set(PSS_IO_VTK_LIBRARIES VTK::CommonCore VTK::CommonDataModel VTK::CommonExecutionModel VTK::FiltersCore
   VTK::IOCore VTK::IOGeometry VTK::IOPLY VTK::IOXML VTK::IOXMLParser VTK::expat)

@@ -11,6 +11,7 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkVersion.h"
 #include "vtkStaticCellLocator.h"
 #include "vtkXMLPolyDataReader.h"
 
@@ -83,6 +84,25 @@ TEST(Cli, HelpAndUsageErrors)
   r = RunCommand(Pss() + " project --h abc x.vtp -o y.vtp");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.output.find("expects a number"), std::string::npos) << r.output;
+}
+
+// --version (and the version subcommand) names the project's version, VTK's and the copy of the
+// vector kernels the dispatcher chose; --help lists it.
+TEST(Cli, VersionNamesProjectVtkAndSimdPath)
+{
+  const std::string expected = std::string("pss ") + PSS_PROJECT_VERSION + " (PointSetSurfaces)\nVTK " +
+    vtkVersion::GetVTKVersion() + "\nSIMD ";
+  for (const char* spelling : { " --version", " version" })
+  {
+    const CommandResult r = RunCommand(Pss() + spelling);
+    EXPECT_EQ(r.exitCode, 0) << spelling;
+    EXPECT_EQ(r.output.rfind(expected, 0), 0u) << spelling << ": " << r.output;
+    const std::string simd = r.output.substr(std::min(expected.size(), r.output.size()));
+    EXPECT_TRUE(simd == "avx2\n" || simd == "baseline\n") << spelling << ": " << r.output;
+  }
+  const CommandResult forced = RunCommand("PSS_SIMD=baseline " + Pss() + " --version");
+  EXPECT_EQ(forced.output, expected + "baseline\n");
+  EXPECT_NE(RunCommand(Pss() + " --help").output.find("--version"), std::string::npos);
 }
 
 // Files that do not exist, empty clouds and h <= 0 fail with exit 1 and say why.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The vector kernels' run-time dispatch (pss/Kernel.cxx): PSS_SIMD=baseline forces the SSE2 copy
+// The vector kernels' run-time dispatch (pss/KernelDispatch.cxx): PSS_SIMD=baseline forces the SSE2 copy
 // (ctest Portable.Baseline.* runs every suite so), otherwise the AVX2 copy runs where the CPU has it.
 #include "pss/Kernel.h"
 

@@ -1,6 +1,6 @@
 # cmake -DPSS=build/bin/pss -DWORK=dir -P CompareKernels.cmake: the pss tool projects the same
 # cloud with the AVX2 kernels and with PSS_SIMD=baseline; the outputs must be the same bytes (both
-# copies compute with four-double vectors and no fused multiply-add, see pss/Kernel.cxx).
+# copies compute with four-double vectors and no fused multiply-add, see pss/KernelDispatch.cxx).
 file(MAKE_DIRECTORY "${WORK}")
 execute_process(COMMAND "${PSS}" generate --scene sphere --dimension 3 --count 1500 --noise 0.3 --size 40
     -o "${WORK}/cloud.csv" RESULT_VARIABLE rc)

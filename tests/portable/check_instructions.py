@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Fails when a binary holds an AVX instruction (VEX/EVEX-encoded, or on ymm/zmm/mask registers:
 AVX, AVX2, AVX-512) outside the functions allowed to (the dispatched kernels' AVX2 copies,
-pss/Kernel.cxx), so that the default build loads and runs on any x86-64 CPU (the baseline: SSE2).
+pss/KernelDispatch.cxx), so that the default build loads and runs on any x86-64 CPU (the baseline: SSE2).
 
     check_instructions.py [--objdump objdump] [--allow REGEX] [--kernels FILE]... FILE...
 

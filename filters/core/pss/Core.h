@@ -5,6 +5,7 @@
  */
 #pragma once
 
+#include "pss/DirectionRulesAndEnergies.h"
 #include "pss/Domain.h"
 #include "pss/ExtremalSurface.h"
 #include "pss/Kernel.h"
@@ -15,6 +16,5 @@
 #include "pss/SurfaceMesh.h"
 #include "pss/SyntheticClouds.h"
 #include "pss/Types.h"
-#include "pss/VariantTable.h"
-#include "pss/Variants.h"
+#include "pss/VariantCatalog.h"
 #include "pss/Workspace.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pss/Variants.h"
+#include "pss/DirectionRulesAndEnergies.h"
 
 namespace pss
 {

@@ -116,7 +116,7 @@ void expNonPositive(const double* x, double* out, Eigen::Index n);
 
 /// The instruction set of the vector kernels in use: "avx2" where the CPU has it, else "baseline"
 /// (x86-64's SSE2). Chosen at the first call; the environment variable PSS_SIMD=baseline forces
-/// "baseline". Both give bitwise the same results (see Kernel.cxx).
+/// "baseline". Both give bitwise the same results (see KernelDispatch.cxx).
 const char* kernelInstructionSet();
 
 /**

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The energy of Eq. 1 with the plain Gaussian weights (Levin) and with normalized ones.
-#include "pss/Variants.h"
+#include "pss/DirectionRulesAndEnergies.h"
 #include "pss/Workspace.h"
 
 namespace pss

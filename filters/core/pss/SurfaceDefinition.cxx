@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pss/SurfaceDefinition.h"
 
-#include "pss/VariantTable.h"
+#include "pss/VariantCatalog.h"
 #include "pss/Workspace.h"
 
 #include <stdexcept>

@@ -4,9 +4,9 @@
  * @brief A point-set surface definition: a direction rule n(x) composed with an energy e(y, a),
  *        the two ingredients of an extremal surface (Definition 1).
  *
- * The paper's five definitions are the rows of a product table (Variants.h): three direction
- * rules (the smallest eigenvector of the covariance about x, or about the weighted centre of mass,
- * or the argmin of e_I over directions) and four energies (Eq. 1, its normalized form, e_I, delta).
+ * The paper's five definitions are the rows of a product table (DirectionRulesAndEnergies.h):
+ * three direction rules (the smallest eigenvector of the covariance about x, or about the weighted
+ * centre of mass, or the argmin of e_I over directions) and four energies (Eq. 1, its normalized form, e_I, delta).
  * Everything else (the implicit function g of Eq. 2, projection to minima or maxima, domain
  * classification, field sampling) is written once against SurfaceDefinition in
  * ExtremalSurface.h. Adding a definition (APSS, RIMLS, ...) means a new rule or energy where the
@@ -129,7 +129,7 @@ private:
   const std::unique_ptr<const Energy> Energies;
 };
 
-/// The definition named by @p v: variantTable()'s row for it (defined in VariantTable.cxx). Throws
+/// The definition named by @p v: variantTable()'s row for it (defined in VariantCatalog.cxx). Throws
 /// like the constructor, and std::invalid_argument for a value outside the table.
 std::unique_ptr<SurfaceDefinition> makeSurface(Variant v, const PointIndex& index, const SurfaceParameters& params);
 

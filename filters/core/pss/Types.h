@@ -33,7 +33,7 @@ enum class Variant : int
 constexpr int VariantCount = 5;
 
 /// Canonical lower-case name: "levin", "normalized", "com", "integral", "delta" (from
-/// variantTable(), VariantTable.h).
+/// variantTable(), VariantCatalog.h).
 const char* variantName(Variant v);
 /// Parses the table's canonical names and enum spellings ("LevinMLS", ...), ignoring case, '-',
 /// '_' and ' ', and "mls" for Levin's; returns false if unknown.

@@ -31,7 +31,7 @@ namespace pss
 /**
  * The candidate points of one k-d tree query (absolute coordinates, ordered by index): every
  * point that a neighbourhood of any query near the fetch centre can need (see
- * gatherNeighbourhood). Defined in Kernel.cxx.
+ * gatherNeighbourhood). Defined in CandidateCache.cxx.
  */
 struct CandidateCache
 {

@@ -6,7 +6,7 @@
 #include "vtkNew.h"
 #include "vtkPointSetSurface.h"
 
-#include "pss/VariantTable.h"
+#include "pss/VariantCatalog.h"
 
 #include <gtest/gtest.h>
 

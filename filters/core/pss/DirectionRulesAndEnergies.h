@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file Variants.h
+ * @file DirectionRulesAndEnergies.h
  * @brief The direction rules and energies the paper's five definitions are composed of
- *        (VariantTable.h says which definition takes which). Each is a small value over the
+ *        (VariantCatalog.h says which definition takes which). Each is a small value over the
  *        cloud's index and the parameters; its state lives in the caller's Workspace.
  */
 #pragma once

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pss/VariantTable.h"
+#include "pss/VariantCatalog.h"
 
-#include "pss/Variants.h"
+#include "pss/DirectionRulesAndEnergies.h"
 
 #include <cctype>
 #include <stdexcept>

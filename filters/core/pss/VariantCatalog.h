@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file VariantTable.h
+ * @file VariantCatalog.h
  * @brief The one list of surface definitions: each Variant's names and its composition from a
  *        direction rule and an energy (the paper's table, Sections 2, 4 and 5).
  *

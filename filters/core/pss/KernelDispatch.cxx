@@ -1,0 +1,354 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "pss/KernelDispatch.h"
+
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+
+// Run-time dispatch of the vector kernels below (x86-64 with GCC or clang): each is compiled
+// twice, for the x86-64 baseline (SSE2) and for AVX2, and the first call picks the AVX2 copy when
+// the CPU has it, unless the environment variable PSS_SIMD=baseline forces the baseline copy.
+// Both copies compute with vectors of four doubles (two SSE2 registers on the baseline) and no
+// fused multiply-add, so they give bitwise the same results; only the speed differs. A build
+// for the compiling machine (PSS_NATIVE_ARCH, -march=native) compiles both for that machine.
+#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
+#define PSS_KERNEL_DISPATCH 1
+#include <immintrin.h>
+#define PSS_TARGET_AVX2 __attribute__((target("avx2")))
+#else
+#define PSS_KERNEL_DISPATCH 0
+#endif
+// The bodies the dispatched functions share: always inlined, so that each copy compiles them for
+// its own instruction set (a call to an out-of-line copy would run baseline code).
+#define PSS_KERNEL_INLINE inline __attribute__((always_inline))
+
+namespace pss
+{
+namespace dispatch
+{
+
+namespace
+{
+
+// The weighted sums below run over whole vectors of SimdLanes doubles (GCC/Clang vector
+// extensions: one AVX register on the AVX2 path, two SSE2 registers on the baseline). Each keeps
+// one partial sum per lane and adds the lanes in a fixed order at the end, so a result depends
+// only on the neighbours and their order, never on the thread, the call history or the CPU.
+// GCC and clang note that returning a 32-byte vector without AVX changes the ABI: these helpers
+// are internal and always inlined, so no such value ever crosses a call. (For the rest of this
+// file: GCC reports the note at its end.)
+#if defined(__clang__)
+#if __has_warning("-Wpsabi")
+#pragma clang diagnostic ignored "-Wpsabi"
+#endif
+#elif defined(__GNUC__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+typedef double VecD __attribute__((vector_size(8 * SimdLanes)));
+typedef std::uint64_t VecU __attribute__((vector_size(8 * SimdLanes)));
+
+PSS_KERNEL_INLINE VecD load(const double* p)
+{
+  VecD v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+PSS_KERNEL_INLINE void store(double* p, const VecD& v)
+{
+  std::memcpy(p, &v, sizeof v);
+}
+
+PSS_KERNEL_INLINE VecD splat(double x)
+{
+  return VecD{} + x;
+}
+
+PSS_KERNEL_INLINE double lanesSum(const VecD& v)
+{
+  double s = 0.0;
+  for (int k = 0; k < SimdLanes; ++k)
+  {
+    s += v[k];
+  }
+  return s;
+}
+
+// exp(x) for x <= 0, SimdLanes at a time: x = k ln2 + r with |r| <= ln2 / 2 (ln2 in two parts,
+// so k ln2 is exact to double precision), exp(r) by its Taylor series to degree 13 (remainder
+// below 1e-17), and 2^k added to the exponent bits. Within one ulp of std::exp on [-708, 0];
+// 0 below -708 (where the true value is subnormal: a neighbour weighing less than 1e-307 of the
+// nearest one); NaN stays NaN.
+PSS_KERNEL_INLINE VecD expNonPositive(const VecD& v)
+{
+  constexpr double log2e = 1.4426950408889634074;
+  constexpr double ln2hi = 6.93147180369123816490e-01;
+  constexpr double ln2lo = 1.90821492927058770002e-10;
+  constexpr double shifter = 6755399441055744.0; // 1.5 * 2^52: adding it rounds to an integer
+  const VecD x = v < -708.0 ? splat(-708.0) : v;
+  const VecD t = x * log2e + shifter; // k in the low mantissa bits
+  const VecD k = t - shifter;
+  const VecD r = (x - k * ln2hi) - k * ln2lo;
+  VecD p = r * (1.0 / 6227020800.0) + 1.0 / 479001600.0;
+  p = p * r + 1.0 / 39916800.0;
+  p = p * r + 1.0 / 3628800.0;
+  p = p * r + 1.0 / 362880.0;
+  p = p * r + 1.0 / 40320.0;
+  p = p * r + 1.0 / 5040.0;
+  p = p * r + 1.0 / 720.0;
+  p = p * r + 1.0 / 120.0;
+  p = p * r + 1.0 / 24.0;
+  p = p * r + 1.0 / 6.0;
+  p = p * r + 0.5;
+  p = p * r + 1.0;
+  p = p * r + 1.0;
+  // Unsigned, so that a negative k wraps instead of shifting a negative number (undefined).
+  VecU bits;
+  std::memcpy(&bits, &p, sizeof bits);
+  VecU kBits;
+  std::memcpy(&kBits, &t, sizeof kBits);
+  constexpr std::uint64_t shifterBits = 0x4338000000000000ULL; // the bits of shifter
+  bits += (kBits - shifterBits) << 52;
+  VecD e;
+  std::memcpy(&e, &bits, sizeof e);
+  e = v < -708.0 ? VecD{} : e;
+  return v != v ? v : e;
+}
+
+// Keeps the candidates inside the band (squared distance below @p limit, or equal to the nearest
+// one's), in order: writes their offsets and squared distances to @p nb from position 0 on and
+// returns how many there are. May write up to four entries past that count (the arrays have
+// that room). Candidates from @p i on, n kept so far; branch-free: every candidate is written,
+// only the kept ones advance n.
+PSS_KERNEL_INLINE Eigen::Index compactTail(const double* px, const double* py, const double* pz, const double* sq,
+  Eigen::Index i, Eigen::Index m, Eigen::Index n, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
+{
+  for (; i < m; ++i)
+  {
+    nb.dx[n] = px[i] - origin.x();
+    nb.dy[n] = py[i] - origin.y();
+    nb.dz[n] = pz[i] - origin.z();
+    nb.sqDist[n] = sq[i];
+    n += static_cast<Eigen::Index>((sq[i] < limit) | (sq[i] == minSq));
+  }
+  return n;
+}
+
+Eigen::Index compactCandidatesBaseline(const double* px, const double* py, const double* pz, const double* sq,
+  Eigen::Index m, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
+{
+  return compactTail(px, py, pz, sq, 0, m, 0, origin, limit, minSq, nb);
+}
+
+#if PSS_KERNEL_DISPATCH
+// The lanes of v picked by perm (pairs of 32-bit indices), in order.
+PSS_TARGET_AVX2 inline __m256d moveDownAvx2(__m256d v, __m256i perm)
+{
+  return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), perm));
+}
+
+PSS_TARGET_AVX2 Eigen::Index compactCandidatesAvx2(const double* px, const double* py, const double* pz,
+  const double* sq, Eigen::Index m, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
+{
+  Eigen::Index n = 0;
+  Eigen::Index i = 0;
+  // Four candidates at a time: the kept ones are moved to the front of the vector by a permutation
+  // chosen from the 4-bit mask, and the whole vector is stored at n.
+  static const auto permutations = [] {
+    std::array<std::array<std::int32_t, 8>, 16> table{};
+    for (int mask = 0; mask < 16; ++mask)
+    {
+      int slot = 0;
+      for (int lane = 0; lane < 4; ++lane)
+      {
+        if (mask & (1 << lane))
+        {
+          table[mask][2 * slot] = 2 * lane;
+          table[mask][2 * slot + 1] = 2 * lane + 1;
+          ++slot;
+        }
+      }
+    }
+    return table;
+  }();
+  const __m256d ox = _mm256_set1_pd(origin.x());
+  const __m256d oy = _mm256_set1_pd(origin.y());
+  const __m256d oz = _mm256_set1_pd(origin.z());
+  const __m256d lim = _mm256_set1_pd(limit);
+  const __m256d nearest = _mm256_set1_pd(minSq);
+  for (; i + 4 <= m; i += 4)
+  {
+    const __m256d d = _mm256_loadu_pd(sq + i);
+    const __m256d keep =
+      _mm256_or_pd(_mm256_cmp_pd(d, lim, _CMP_LT_OQ), _mm256_cmp_pd(d, nearest, _CMP_EQ_OQ));
+    const int mask = _mm256_movemask_pd(keep);
+    const __m256i perm =
+      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(permutations[static_cast<std::size_t>(mask)].data()));
+    _mm256_storeu_pd(nb.dx.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(px + i), ox), perm));
+    _mm256_storeu_pd(nb.dy.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(py + i), oy), perm));
+    _mm256_storeu_pd(nb.dz.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(pz + i), oz), perm));
+    _mm256_storeu_pd(nb.sqDist.data() + n, moveDownAvx2(d, perm));
+    n += __builtin_popcount(static_cast<unsigned>(mask));
+  }
+  return compactTail(px, py, pz, sq, i, m, n, origin, limit, minSq, nb);
+}
+#endif
+
+// Weights w = exp(-(d^2 - minSq) / h^2) of the first @p padded neighbours into @p weight, and
+// sums[] = {sum w, sum w dx, sum w dy, sum w dz}.
+PSS_KERNEL_INLINE void weightsBody(const double* sqDist, const double* dx, const double* dy, const double* dz,
+  double* weight, Eigen::Index padded, double minSq, double invH2, double* sums)
+{
+  const VecD nearestSq = splat(minSq);
+  const VecD scale = splat(-invH2);
+  VecD sw{}, sx{}, sy{}, sz{};
+  for (Eigen::Index i = 0; i < padded; i += SimdLanes)
+  {
+    const VecD w = expNonPositive((load(sqDist + i) - nearestSq) * scale);
+    store(weight + i, w);
+    sw += w;
+    sx += w * load(dx + i);
+    sy += w * load(dy + i);
+    sz += w * load(dz + i);
+  }
+  sums[0] = lanesSum(sw);
+  sums[1] = lanesSum(sx);
+  sums[2] = lanesSum(sy);
+  sums[3] = lanesSum(sz);
+}
+
+PSS_KERNEL_INLINE void expBody(const double* x, double* out, Eigen::Index n)
+{
+  Eigen::Index i = 0;
+  for (; i + SimdLanes <= n; i += SimdLanes)
+  {
+    store(out + i, expNonPositive(load(x + i)));
+  }
+  for (; i < n; ++i)
+  {
+    VecD v{};
+    v[0] = x[i];
+    out[i] = expNonPositive(v)[0];
+  }
+}
+
+// sum_i w_i c_i c_i^T with c_i = (dx_i, dy_i, dz_i) - m: s[] = {xx, xy, xz, yy, yz, zz}.
+PSS_KERNEL_INLINE void scatterBody(const double* weight, const double* dx, const double* dy, const double* dz,
+  Eigen::Index count, double mx0, double my0, double mz0, double* s)
+{
+  const VecD mx = splat(mx0);
+  const VecD my = splat(my0);
+  const VecD mz = splat(mz0);
+  VecD xx{}, xy{}, xz{}, yy{}, yz{}, zz{};
+  for (Eigen::Index i = 0; i < count; i += SimdLanes)
+  {
+    const VecD w = load(weight + i);
+    const VecD cx = load(dx + i) - mx;
+    const VecD cy = load(dy + i) - my;
+    const VecD cz = load(dz + i) - mz;
+    const VecD wx = w * cx;
+    const VecD wy = w * cy;
+    xx += wx * cx;
+    xy += wx * cy;
+    xz += wx * cz;
+    yy += wy * cy;
+    yz += wy * cz;
+    zz += w * cz * cz;
+  }
+  s[0] = lanesSum(xx);
+  s[1] = lanesSum(xy);
+  s[2] = lanesSum(xz);
+  s[3] = lanesSum(yy);
+  s[4] = lanesSum(yz);
+  s[5] = lanesSum(zz);
+}
+
+// sum_i w_i s_i^k (k = 1..4) with s_i = a . (dx_i, dy_i, dz_i).
+PSS_KERNEL_INLINE void momentsBody(const double* weight, const double* dx, const double* dy, const double* dz,
+  Eigen::Index count, double ax0, double ay0, double az0, double* out)
+{
+  const VecD ax = splat(ax0);
+  const VecD ay = splat(ay0);
+  const VecD az = splat(az0);
+  VecD m1{}, m2{}, m3{}, m4{};
+  for (Eigen::Index i = 0; i < count; i += SimdLanes)
+  {
+    const VecD s = ax * load(dx + i) + ay * load(dy + i) + az * load(dz + i);
+    const VecD ws = load(weight + i) * s;
+    const VecD ws2 = ws * s;
+    m1 += ws;
+    m2 += ws2;
+    m3 += ws2 * s;
+    m4 += ws2 * (s * s);
+  }
+  out[0] = lanesSum(m1);
+  out[1] = lanesSum(m2);
+  out[2] = lanesSum(m3);
+  out[3] = lanesSum(m4);
+}
+
+
+#define PSS_KERNEL_COPIES(SUFFIX, TARGET)                                                                        \
+  TARGET void weights##SUFFIX(const double* sqDist, const double* dx, const double* dy, const double* dz,          \
+    double* weight, Eigen::Index padded, double minSq, double invH2, double* sums)                                \
+  {                                                                                                              \
+    weightsBody(sqDist, dx, dy, dz, weight, padded, minSq, invH2, sums);                                         \
+  }                                                                                                              \
+  TARGET void exp##SUFFIX(const double* x, double* out, Eigen::Index n)                                         \
+  {                                                                                                              \
+    expBody(x, out, n);                                                                                          \
+  }                                                                                                              \
+  TARGET void scatter##SUFFIX(const double* w, const double* dx, const double* dy, const double* dz,             \
+    Eigen::Index count, double mx, double my, double mz, double* s)                                              \
+  {                                                                                                              \
+    scatterBody(w, dx, dy, dz, count, mx, my, mz, s);                                                            \
+  }                                                                                                              \
+  TARGET void moments##SUFFIX(const double* w, const double* dx, const double* dy, const double* dz,             \
+    Eigen::Index count, double ax, double ay, double az, double* s)                                              \
+  {                                                                                                              \
+    momentsBody(w, dx, dy, dz, count, ax, ay, az, s);                                                            \
+  }
+
+PSS_KERNEL_COPIES(Baseline, )
+#if PSS_KERNEL_DISPATCH
+PSS_KERNEL_COPIES(Avx2, PSS_TARGET_AVX2)
+#endif
+
+} // namespace
+
+const KernelTable& kernels()
+{
+  static const KernelTable table = [] {
+    const KernelTable baseline{ "baseline", compactCandidatesBaseline, weightsBaseline, expBaseline,
+      scatterBaseline, momentsBaseline };
+#if PSS_KERNEL_DISPATCH
+    const KernelTable avx2{ "avx2", compactCandidatesAvx2, weightsAvx2, expAvx2, scatterAvx2, momentsAvx2 };
+    const char* forced = std::getenv("PSS_SIMD");
+    if (forced && std::strcmp(forced, "baseline") == 0)
+    {
+      return baseline;
+    }
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2"))
+    {
+      return avx2;
+    }
+#endif
+    return baseline;
+  }();
+  return table;
+}
+
+} // namespace dispatch
+
+void expNonPositive(const double* x, double* out, Eigen::Index n)
+{
+  dispatch::kernels().exp(x, out, n);
+}
+
+const char* kernelInstructionSet()
+{
+  return dispatch::kernels().name;
+}
+
+} // namespace pss

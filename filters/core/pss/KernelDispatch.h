@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file KernelDispatch.h
+ * @brief Private to the core: the table of the vector kernels' copy in use (baseline SSE2 or
+ *        AVX2, chosen at the first call), which KernelDispatch.cxx alone compiles, so that no
+ *        other file of the core holds an AVX instruction.
+ */
+#ifndef pss_KernelDispatch_h
+#define pss_KernelDispatch_h
+
+#include "pss/Kernel.h"
+
+namespace pss
+{
+namespace dispatch
+{
+
+// Doubles per vector on every path: the partial sums, and so every result, do not depend on the
+// instruction set chosen.
+constexpr int SimdLanes = 4;
+
+// One copy of every kernel per instruction set, and the table of the copy in use.
+struct KernelTable
+{
+  const char* name;
+  Eigen::Index (*compact)(const double*, const double*, const double*, const double*, Eigen::Index, const Vec3&,
+    double, double, Neighbourhood&);
+  void (*weights)(const double*, const double*, const double*, const double*, double*, Eigen::Index, double, double,
+    double*);
+  void (*exp)(const double*, double*, Eigen::Index);
+  void (*scatter)(const double*, const double*, const double*, const double*, Eigen::Index, double, double, double,
+    double*);
+  void (*moments)(const double*, const double*, const double*, const double*, Eigen::Index, double, double, double,
+    double*);
+};
+
+/// The copy of the kernels in use: AVX2 when the CPU has it, unless PSS_SIMD=baseline.
+const KernelTable& kernels();
+
+} // namespace dispatch
+} // namespace pss
+
+#endif

@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "pss/Kernel.h"
+
+#include "pss/KernelDispatch.h"
+#include "pss/PointIndex.h"
+#include "pss/Workspace.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace pss
+{
+
+using dispatch::kernels;
+using dispatch::SimdLanes;
+
+void SurfaceParameters::validate() const
+{
+  if (!(h > 0.0) || !std::isfinite(h))
+  {
+    throw std::invalid_argument("the scale h must be a positive finite number, got " + std::to_string(h));
+  }
+  if (!(cutoff > 0.0) || !std::isfinite(cutoff))
+  {
+    throw std::invalid_argument("the kernel cutoff must be a positive finite number of h, got " + std::to_string(cutoff));
+  }
+  if (quadratureOrder < 1 || quadratureOrder > 32)
+  {
+    throw std::invalid_argument(
+      "the quadrature order must be in [1, 32], got " + std::to_string(quadratureOrder));
+  }
+  if (integrandPower != 1 && integrandPower != 2)
+  {
+    throw std::invalid_argument("the integrand power must be 1 or 2, got " + std::to_string(integrandPower));
+  }
+  if (!(minStability >= 0.0 && minStability < 1.0))
+  {
+    throw std::invalid_argument("the minimum stability must be in [0, 1), got " + std::to_string(minStability));
+  }
+  if (!(deltaLattice == 0.0 || (deltaLattice >= 0.05 && deltaLattice <= 1.0)))
+  {
+    throw std::invalid_argument(
+      "the delta lattice spacing must be 0 (exact) or in [0.05, 1] h, got " + std::to_string(deltaLattice));
+  }
+}
+
+void Neighbourhood::resize(Eigen::Index n)
+{
+  // Room for a whole vector past the end: the loops below read and write in whole vectors.
+  const Eigen::Index needed = n + SimdLanes;
+  if (dx.size() < needed)
+  {
+    const Eigen::Index capacity = std::max<Eigen::Index>(needed, 2 * dx.size());
+    for (Eigen::ArrayXd* a : { &dx, &dy, &dz, &sqDist, &weight })
+    {
+      a->resize(capacity);
+    }
+  }
+  count = n;
+}
+
+void prefetchNeighbourhoods(
+  const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach, Workspace& ws)
+{
+  const Vec3 c = index.restrict(center);
+  if (!ws.wide.covers(index, params, c, reach))
+  {
+    // Half an h of slack beyond the reach asked for, so that nearby centres (the steps of a
+    // projection, the samples of a line search) reuse the same fetch.
+    ws.wide.fetch(index, params, c, ws.leaves, reach + 0.5 * params.h);
+  }
+}
+
+void focusNeighbourhoods(
+  const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach, Workspace& ws)
+{
+  const Vec3 c = index.restrict(center);
+  if (ws.focused.covers(index, params, c, reach))
+  {
+    return;
+  }
+  prefetchNeighbourhoods(index, params, c, reach, ws);
+  ws.focused.focus(ws.wide, c, reach, ws.focusSq);
+}
+
+void noteReach(const PointIndex& index, const Vec3& y, double sqRadius, Workspace& ws)
+{
+  if (!index.holdsBall(y, std::sqrt(sqRadius)))
+  {
+    ws.leftCompleteRegion = true;
+  }
+}
+
+void gatherNeighbourhood(
+  const PointIndex& index, const SurfaceParameters& params, const Vec3& y, Neighbourhood& nb, Workspace& ws)
+{
+  const Vec3 origin = index.restrict(y);
+  if (nb.indexSerial == index.serial() && nb.h == params.h && nb.cutoff == params.cutoff && nb.origin == origin)
+  {
+    noteReach(index, origin, nb.minSqDist + params.cutoff * params.cutoff * params.h * params.h, ws);
+    return;
+  }
+  nb.indexSerial = 0; // until the new contents are complete
+  nb.origin = origin;
+  nb.invH2 = 1.0 / (params.h * params.h);
+  // Either cache holds, in index order, every point the neighbourhood can need, so which one
+  // serves the query does not change a bit of the result.
+  const bool focused = ws.focused.covers(index, params, nb.origin);
+  CandidateCache& cache = focused ? ws.focused : ws.wide;
+  if (!focused && !cache.covers(index, params, nb.origin))
+  {
+    cache.fetch(index, params, nb.origin, ws.leaves);
+  }
+  const Eigen::Index m = cache.count;
+  // Offsets are p - y from absolute coordinates: for large coordinates this subtraction is the
+  // only place digits can go, and it is exact to one rounding whatever the cache centre was.
+  const auto sq = cache.squaredDistances(nb.origin, ws.candidateSq);
+  const double minSq = sq.minCoeff();
+  nb.resize(m);
+  const Eigen::Index n = kernels().compact(cache.px.data(), cache.py.data(), cache.pz.data(), sq.data(), m,
+    nb.origin, minSq + cache.band, minSq, nb);
+  nb.count = n;
+  nb.minSqDist = minSq;
+  noteReach(index, origin, minSq + cache.band, ws);
+  // The last vector is padded with neighbours of weight 0 at offset 0, which add nothing.
+  const Eigen::Index padded = (n + SimdLanes - 1) / SimdLanes * SimdLanes;
+  for (Eigen::Index i = n; i < padded; ++i)
+  {
+    nb.dx[i] = nb.dy[i] = nb.dz[i] = 0.0;
+    nb.sqDist[i] = std::numeric_limits<double>::infinity();
+  }
+  // Weights, their sum and the first moments in one pass.
+  double sums[4];
+  kernels().weights(nb.sqDist.data(), nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.weight.data(), padded, minSq,
+    nb.invH2, sums);
+  nb.weightSum = sums[0];
+  nb.moment = Vec3(sums[1], sums[2], sums[3]);
+  nb.indexSerial = index.serial();
+  nb.h = params.h;
+  nb.cutoff = params.cutoff;
+}
+Vec3 centroidOffset(const Neighbourhood& nb)
+{
+  return nb.moment / nb.weightSum;
+}
+
+// sum_i w_i (p_i - y - m)(p_i - y - m)^T: the six distinct entries in one pass over the
+// neighbours (the padding after the last one weighs 0).
+Mat3 weightedScatter(const Neighbourhood& nb, const Vec3& m)
+{
+  double s[6];
+  kernels().scatter(nb.weight.data(), nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.count, m.x(), m.y(), m.z(), s);
+  Mat3 c;
+  c(0, 0) = s[0];
+  c(1, 1) = s[3];
+  c(2, 2) = s[5];
+  c(0, 1) = c(1, 0) = s[1];
+  c(0, 2) = c(2, 0) = s[2];
+  c(1, 2) = c(2, 1) = s[4];
+  return c;
+}
+
+LineMoments lineMoments(const Neighbourhood& nb, const Vec3& a)
+{
+  double s[4];
+  kernels().moments(nb.weight.data(), nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.count, a.x(), a.y(), a.z(), s);
+  LineMoments out;
+  out.s1 = s[0];
+  out.s2 = s[1];
+  out.s3 = s[2];
+  out.s4 = s[3];
+  return out;
+}
+
+Mat3 covarianceAboutQuery(const Neighbourhood& nb)
+{
+  return weightedScatter(nb, Vec3::Zero());
+}
+
+Mat3 covarianceAboutCentroid(const Neighbourhood& nb)
+{
+  // Two passes: far from the cloud the offsets are large and nearly equal, and the one-pass
+  // form E[r r^T] - m m^T would cancel away the digits that matter.
+  return weightedScatter(nb, centroidOffset(nb)) / nb.weightSum;
+}
+} // namespace pss
