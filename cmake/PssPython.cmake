@@ -39,7 +39,7 @@ vtk_module_wrap_python(
 # functions of _numpy_api.py. Copied next to the wrapped module in the build tree (configure_file
 # copies again when a file changes) and installed beside it.
 set(pss_python_package_dir "${PROJECT_BINARY_DIR}/${PSS_PYTHON_DESTINATION}/pointsetsurfaces")
-foreach(pss_python_file __init__.py _numpy_api.py)
+foreach(pss_python_file __init__.py _numpy_api.py _numpy_support.py)
   configure_file("${PROJECT_SOURCE_DIR}/filters/python/${pss_python_file}" "${pss_python_package_dir}/${pss_python_file}"
     COPYONLY)
   install(FILES "${pss_python_package_dir}/${pss_python_file}"

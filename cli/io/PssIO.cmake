@@ -19,4 +19,5 @@ set(PSS_IO_VTK_LIBRARIES VTK::CommonCore VTK::CommonDataModel VTK::CommonExecuti
 set(PSS_PCD_SOURCES
   "${CMAKE_CURRENT_LIST_DIR}/../../filters/vtkPCDReader.cxx"
   "${CMAKE_CURRENT_LIST_DIR}/../../filters/vtkPCDWriter.cxx"
-  "${CMAKE_CURRENT_LIST_DIR}/../../filters/PointSetSurfacesPCD.cxx")
+  "${CMAKE_CURRENT_LIST_DIR}/../../filters/PointSetSurfacesPCD.cxx"
+  "${CMAKE_CURRENT_LIST_DIR}/../../filters/PointSetSurfacesPCDBody.cxx")

@@ -7,6 +7,7 @@ Fails, naming every offending file and line, when
 - a tracked file's name, or a line of a tracked source, test, script or documentation file, names a tracker item or a list entry by
   its number ("issue" or "reading" followed by a number): cite pages and stable headings instead;
 - README.md is longer than 250 lines, or a page in docs/ longer than 600;
+- a source file (C++, Python, CMake) is longer than 800 lines: split it by concern;
 - a page in docs/ is not linked from README.md directly;
 - a relative link in README.md, docs/*.md or benchmarks/README.md does not lead to an existing
   file (the #anchor part is not checked).
@@ -20,6 +21,8 @@ import sys
 
 README_MAX_LINES = 250
 PAGE_MAX_LINES = 600
+SOURCE_MAX_LINES = 800
+CODE_SUFFIXES = (".h", ".cxx", ".cpp", ".py", ".cmake")
 # Case-insensitive; the pattern is built from pieces so that this file does not match itself.
 NUMBERED_NAME = re.compile("iss" + "ue ?[0-9]|read" + "ing [0-9]+", re.IGNORECASE)
 SOURCE_SUFFIXES = (".h", ".cxx", ".cpp", ".py", ".cmake", ".in", ".xml", ".md", ".sh", ".json")
@@ -80,6 +83,11 @@ def main():
             if NUMBERED_NAME.search(line) and not (path == this and "NUMBERED_NAME = " in line):
                 failures.append(f"{path}:{number}: names something by a number (use a page and a stable heading): {line.strip()}")
 
+    for path in sorted(f for f in files if f.endswith(CODE_SUFFIXES) or os.path.basename(f) == "CMakeLists.txt"):
+        count = len(read_lines(root, path) or [])
+        if count > SOURCE_MAX_LINES:
+            failures.append(f"{path}: {count} lines, at most {SOURCE_MAX_LINES} (split it by concern)")
+
     pages = sorted(f for f in files if f.startswith("docs/") and f.endswith(".md") and f.count("/") == 1)
     readme = read_lines(root, "README.md") or []
     if len(readme) - 1 > README_MAX_LINES:
@@ -122,7 +130,8 @@ def main():
             print("  " + failure)
         return 1
     print(f"check_docs: {len(files)} files; README {len(readme) - 1} lines; {len(pages)} pages in docs/, "
-          "each linked from README and within its length; every relative link resolves; no numbered names")
+          "each linked from README and within its length; every relative link resolves; no numbered names; "
+          f"no source over {SOURCE_MAX_LINES} lines")
     return 0
 
 

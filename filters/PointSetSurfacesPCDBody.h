@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file PointSetSurfacesPCDBody.h
+ * @brief Private to the PCD code: the bodies' decoders and encoders (PointSetSurfacesPCDBody.cxx)
+ *        and the text helpers the header parser shares with the ascii decoder.
+ */
+#ifndef PointSetSurfacesPCDBody_h
+#define PointSetSurfacesPCDBody_h
+
+#include "PointSetSurfacesPCD.h"
+
+#include <charconv>
+#include <string_view>
+
+namespace pss_pcd
+{
+namespace detail
+{
+
+/// Throws std::runtime_error(@p message).
+[[noreturn]] void Fail(const std::string& message);
+
+/// The whitespace-separated words of @p line (spaces, tabs, a trailing carriage return).
+std::vector<std::string_view> Tokens(std::string_view line);
+
+/// Overflow-checked a * b into @p out; false when it overflows.
+bool Multiply(std::uint64_t a, std::uint64_t b, std::uint64_t& out);
+
+// A decimal number (from_chars: locale-independent, accepts nan and inf); a leading '+' allowed.
+template <typename T>
+bool ParseNumber(std::string_view token, T& value)
+{
+  if (!token.empty() && token.front() == '+')
+  {
+    token.remove_prefix(1);
+  }
+  const char* end = token.data() + token.size();
+  const auto result = std::from_chars(token.data(), end, value);
+  return result.ec == std::errc() && result.ptr == end;
+}
+
+/// Appends the shortest text of @p value that reads back to the same bits.
+template <typename T>
+void AppendNumber(std::string& out, T value)
+{
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  out.append(buffer, result.ptr);
+}
+
+/// Offsets of each field's column in the field-major body.
+std::vector<std::size_t> ColumnStarts(const Header& header);
+
+/// Decodes the body after the header (@p available bytes at @p body; @p headerLines counts the
+/// header's lines, for the ascii decoder's messages) into @p columns; throws on a lie or a cut.
+void DecodeBody(const Header& header, const unsigned char* body, std::size_t available, std::size_t headerLines,
+  Columns& columns);
+
+/// Throws when @p cloud's columns do not match its header.
+void CheckColumns(const Cloud& cloud);
+
+/// Appends @p cloud's body, in its header's DATA kind, to @p out.
+void EncodeBody(const Cloud& cloud, std::vector<unsigned char>& out);
+
+}
+}
+
+#endif
