@@ -17,6 +17,7 @@
 #include "PssOptions.h"
 
 #include "vtkPointSetSurface.h"
+#include "vtkPointSetSurfaceAlgorithm.h"
 #include "vtkPointSetSurfaceCloudSource.h"
 #include "vtkPointSetSurfaceDomainClassifier.h"
 #include "vtkPointSetSurfaceEnergyGlyphs.h"
@@ -155,6 +156,36 @@ void AddSurfaceOptions(OptionTable& t, vtkPointSetSurface* s)
     });
   t.Value("min-stability", "S", "n counts as undefined below this stability (default 1e-5)",
     [s](const std::string& v) { s->SetMinimumStability(pss_cli::ToDouble("min-stability", v)); });
+}
+
+// Where n and the normals point: the filters' ViewpointMode and Viewpoint.
+void AddViewpointOption(OptionTable& t, vtkPointSetSurfaceAlgorithm* a)
+{
+  t.Value("viewpoint", "X,Y,Z|input|off",
+    "orient n and the normals toward this sensor position; input: the cloud's own (a PCD file's VIEWPOINT), "
+    "away from the centroid when it has none; off: away from the centroid (default input)",
+    [a](const std::string& v) {
+      if (v == "input" || v == "off")
+      {
+        a->SetViewpointMode(v == "input" ? vtkPointSetSurfaceAlgorithm::VIEWPOINT_FROM_INPUT
+                                         : vtkPointSetSurfaceAlgorithm::VIEWPOINT_OFF);
+        return;
+      }
+      double xyz[3];
+      std::size_t at = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::size_t comma = k < 2 ? v.find(',', at) : v.size();
+        if (comma == std::string::npos || (k == 2 && v.find(',', at) != std::string::npos))
+        {
+          throw pss_cli::UsageError{ "--viewpoint takes X,Y,Z, input or off, not '" + v + "'" };
+        }
+        xyz[k] = pss_cli::ToDouble("viewpoint", v.substr(at, comma - at));
+        at = comma + 1;
+      }
+      a->SetViewpointModeToGiven();
+      a->SetViewpoint(xyz);
+    });
 }
 
 void AddProjectionOptions(OptionTable& t, vtkPointSetSurfaceProjection* p)
@@ -420,6 +451,7 @@ int ProjectOrClassify(const std::vector<std::string>& args, bool classify)
   AddCommonOptions(t, run);
   AddSurfaceOptions(t, filter->GetSurface());
   AddProjectionOptions(t, filter);
+  AddViewpointOption(t, filter);
   t.Value("start", "FILE", "start points to project (default: the cloud itself)", [&](const std::string& v) { startPath = v; });
   t.Value("lines", "FILE", "also write a segment from each start point to its projection (Figure 1)",
     [&](const std::string& v) { linesPath = v; });
@@ -516,6 +548,7 @@ int Glyphs(const std::vector<std::string>& args)
   OptionTable t;
   AddCommonOptions(t, run);
   AddSurfaceOptions(t, glyphs->GetSurface());
+  AddViewpointOption(t, glyphs);
   t.Value("samples", "FILE", "points where glyphs are drawn (default: the cloud's points)", [&](const std::string& v) { samplesPath = v; });
   t.Value("segments", "FILE", "also write the best-fitting line/plane segments normal to n", [&](const std::string& v) { segmentsPath = v; });
   t.Value("resolution", "N", "directions per glyph (default 72)",
@@ -575,6 +608,7 @@ int Mesh(const std::vector<std::string>& args)
   OptionTable t;
   AddCommonOptions(t, run);
   AddSurfaceOptions(t, mesher->GetSurface());
+  AddViewpointOption(t, mesher);
   // The filter clamps (VTK's convention); the command line refuses what it would change.
   auto inRange = [](const char* name, const std::string& v, double lo, double hi) {
     const double x = pss_cli::ToDouble(name, v);

@@ -49,6 +49,12 @@ std::vector<pss::Vec3> ToVectors(vtkPoints* points, int threads)
   return out;
 }
 
+pss::Orientation OrientationFor(const double* viewpoint, const pss::Vec3& centroid)
+{
+  return viewpoint ? pss::Orientation::toward(pss::Vec3(viewpoint[0], viewpoint[1], viewpoint[2]))
+                   : pss::Orientation::awayFrom(centroid);
+}
+
 namespace
 {
 

@@ -14,6 +14,7 @@
 #include "vtkPoints.h"
 #include "vtkSmartPointer.h"
 
+#include "pss/ExtremalSurface.h"
 #include "pss/Types.h"
 
 #include <vector>
@@ -38,6 +39,10 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, vtkIdType tuples, int compone
   array->SetNumberOfTuples(tuples);
   return array;
 }
+
+/// n's orientation: toward @p viewpoint when it is given (a sensor's position, three values),
+/// else away from @p centroid (the rule for closed shapes).
+pss::Orientation OrientationFor(const double* viewpoint, const pss::Vec3& centroid);
 
 /// One vertex cell per point 0..n-1.
 vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n);

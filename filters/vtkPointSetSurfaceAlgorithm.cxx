@@ -6,9 +6,15 @@
 #include "PointSetSurfacesVTKUtilities.h"
 #include "vtkPointSetSurface.h"
 
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
+#include "vtkPointSet.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
+
+#include <algorithm>
+#include <cmath>
 
 vtkCxxSetObjectMacro(vtkPointSetSurfaceAlgorithm, Surface, vtkPointSetSurface);
 
@@ -65,4 +71,41 @@ void vtkPointSetSurfaceAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   pss_vtk::PrintSurface(os, indent, this->Surface);
+  static const char* const modes[] = { "FromInput", "Given", "Off" };
+  os << indent << "ViewpointMode: " << modes[this->ViewpointMode] << "\n";
+  os << indent << "Viewpoint: " << this->Viewpoint[0] << " " << this->Viewpoint[1] << " " << this->Viewpoint[2] << "\n";
+}
+
+bool vtkPointSetSurfaceAlgorithm::ResolveViewpoint(vtkPointSet* cloud, double viewpoint[3], bool& ok)
+{
+  ok = true;
+  if (this->ViewpointMode == VIEWPOINT_OFF)
+  {
+    return false;
+  }
+  if (this->ViewpointMode == VIEWPOINT_GIVEN)
+  {
+    std::copy(this->Viewpoint, this->Viewpoint + 3, viewpoint);
+  }
+  else
+  {
+    vtkDataArray* field = cloud ? cloud->GetFieldData()->GetArray("Viewpoint") : nullptr;
+    if (!field || field->GetNumberOfValues() < 3)
+    {
+      return false;
+    }
+    const int components = field->GetNumberOfComponents();
+    for (int k = 0; k < 3; ++k)
+    {
+      viewpoint[k] = field->GetComponent(k / components, k % components);
+    }
+  }
+  if (!(std::isfinite(viewpoint[0]) && std::isfinite(viewpoint[1]) && std::isfinite(viewpoint[2])))
+  {
+    vtkErrorMacro(<< "the viewpoint (" << viewpoint[0] << ", " << viewpoint[1] << ", " << viewpoint[2]
+                  << ") is not finite");
+    ok = false;
+    return false;
+  }
+  return true;
 }

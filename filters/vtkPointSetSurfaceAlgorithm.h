@@ -51,6 +51,36 @@ public:
   /// Includes the surface's modification time, so changing its parameters re-executes the filter.
   vtkMTimeType GetMTime() override;
 
+  /// Where n and the output normals point (see ViewpointMode).
+  enum ViewpointModeType
+  {
+    VIEWPOINT_FROM_INPUT = 0, ///< toward the cloud's field data `Viewpoint` when it has one (PCD)
+    VIEWPOINT_GIVEN = 1,      ///< toward the Viewpoint property
+    VIEWPOINT_OFF = 2         ///< away from the cloud's centroid, as without a viewpoint
+  };
+
+  ///@{
+  /**
+   * Orienting n (the `Normal` arrays, the energy glyphs' segments, the mesh's normals) toward a
+   * sensor: a single depth-camera view sees every surface from its front, so n . (viewpoint - x)
+   * >= 0 is right everywhere, where the default rule, away from the cloud's centroid, is only
+   * right on closed shapes. Default VIEWPOINT_FROM_INPUT: the first three values of the cloud's
+   * field data `Viewpoint` (vtkPCDReader's, tx ty tz), and the centroid rule when it has none.
+   * An update with a non-finite viewpoint fails with an error.
+   */
+  vtkSetClampMacro(ViewpointMode, int, VIEWPOINT_FROM_INPUT, VIEWPOINT_OFF);
+  vtkGetMacro(ViewpointMode, int);
+  void SetViewpointModeToFromInput() { this->SetViewpointMode(VIEWPOINT_FROM_INPUT); }
+  void SetViewpointModeToGiven() { this->SetViewpointMode(VIEWPOINT_GIVEN); }
+  void SetViewpointModeToOff() { this->SetViewpointMode(VIEWPOINT_OFF); }
+  ///@}
+
+  ///@{
+  /// The sensor's position for VIEWPOINT_GIVEN. Default (0, 0, 0), where PCL's frames put it.
+  vtkSetVector3Macro(Viewpoint, double);
+  vtkGetVector3Macro(Viewpoint, double);
+  ///@}
+
 protected:
   vtkPointSetSurfaceAlgorithm();
   ~vtkPointSetSurfaceAlgorithm() override;
@@ -76,7 +106,16 @@ protected:
   /// than one process), else nullptr.
   vtkMultiProcessController* DistributedController() const;
 
+  /**
+   * The viewpoint this update orients toward (ViewpointMode, @p cloud's field data): true with
+   * @p viewpoint set, false for the centroid rule. A non-finite one is reported with
+   * vtkErrorMacro and @p ok set false.
+   */
+  bool ResolveViewpoint(vtkPointSet* cloud, double viewpoint[3], bool& ok);
+
   vtkPointSetSurface* Surface = nullptr;
+  int ViewpointMode = VIEWPOINT_FROM_INPUT;
+  double Viewpoint[3] = { 0.0, 0.0, 0.0 };
 
   /// Every rank's cloud gathered by the last distributed update: the prepared surface refers to it.
   vtkSmartPointer<vtkPolyData> GatheredCloud;

@@ -26,9 +26,19 @@ Orientation Orientation::awayFrom(const Vec3& point)
   return o;
 }
 
+Orientation Orientation::toward(const Vec3& viewpoint)
+{
+  Orientation o;
+  o.rule = Rule::TowardPoint;
+  o.reference = viewpoint;
+  return o;
+}
+
 Vec3 Orientation::apply(const Vec3& n, const Vec3& x) const
 {
-  const double side = rule == Rule::AwayFromPoint ? n.dot(x - reference) : n.dot(reference);
+  const double side = rule == Rule::AwayFromPoint ? n.dot(x - reference)
+    : rule == Rule::TowardPoint                   ? n.dot(reference - x)
+                                                  : n.dot(reference);
   return side < 0.0 ? Vec3(-n) : n;
 }
 

@@ -22,14 +22,16 @@ namespace pss
  * @brief How an unoriented n is turned into a vector (for g's sign and for stream tracers).
  *
  * AwayFromPoint: n . (x - reference) >= 0, i.e. n points away from a reference point (by default
- * the cloud's centroid). AlongDirection: n . reference >= 0. Both are continuous wherever n is,
- * except on the set where n is orthogonal to (x - reference), respectively to reference.
+ * the cloud's centroid). TowardPoint: n . (reference - x) >= 0, toward a sensor's viewpoint (every
+ * surface one view sees faces it). AlongDirection: n . reference >= 0. Each is continuous wherever
+ * n is, except on the set where n is orthogonal to (x - reference), respectively to reference.
  */
 struct Orientation
 {
   enum class Rule
   {
     AwayFromPoint,
+    TowardPoint,
     AlongDirection
   };
   Rule rule = Rule::AwayFromPoint;
@@ -39,6 +41,8 @@ struct Orientation
   static Orientation awayFromCentroid(const PointIndex& index);
   /// Away from @p point (awayFromCentroid with a centroid known otherwise, e.g. reduced over MPI ranks).
   static Orientation awayFrom(const Vec3& point);
+  /// Toward @p viewpoint (the sensor of a single view).
+  static Orientation toward(const Vec3& viewpoint);
   /// n or -n, following the rule at x (n itself when the rule is undecided, i.e. exactly zero).
   Vec3 apply(const Vec3& n, const Vec3& x) const;
 };

@@ -19,6 +19,8 @@ namespace pss
 void MeshOptions::validate() const
 {
   auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  if (viewpoint && !isFinite(*viewpoint))
+    throw std::invalid_argument("the viewpoint must have finite coordinates");
   if (!positive(cellSize))
   {
     throw std::invalid_argument("the mesh cell size must be a positive finite multiple of h");
@@ -324,7 +326,7 @@ void SurfaceMesher::orient()
 {
   const std::size_t n = Keys.size();
   Sign.assign(n, 0);
-  const Orientation away = Orientation::awayFrom(Frame.centroid);
+  const Orientation away = Options.viewpoint ? Orientation::toward(*Options.viewpoint) : Orientation::awayFrom(Frame.centroid);
   // Max-heap of (|n_a . n_b|, b, a): the most parallel edge out of the oriented set goes first.
   using Edge = std::tuple<double, std::uint32_t, std::uint32_t>;
   std::priority_queue<Edge> heap;

@@ -13,7 +13,8 @@
  * 3. orient: n is unoriented, so g's sign is meaningless until the n of neighbouring corners
  *    agree. Orientation is propagated over the grid edges of the band, most parallel neighbours
  *    first (a maximum spanning tree of |n_a . n_b|, as in Hoppe et al.'s normal orientation); each
- *    connected piece starts from its first corner, oriented away from the cloud's centroid.
+ *    connected piece starts from its first corner, oriented away from the cloud's centroid (toward
+ *    MeshOptions::viewpoint when one is given).
  * 4. contour: every band cell is split into d! simplices along its main diagonal (Kuhn's
  *    subdivision: 6 tetrahedra, or 2 triangles in 2D, the same split in every cell, so
  *    neighbouring cells share their faces' triangulations and the contour has no cracks); a
@@ -92,6 +93,10 @@ struct MeshOptions
     return p;
   }();
   DomainThresholds domain;       ///< what counts as InDomain (the classifier's thresholds)
+  /// A sensor's position: each piece's first corner, and so the piece's n and normals, is
+  /// oriented toward it instead of away from the cloud's centroid (a single view sees every
+  /// surface from its front).
+  std::optional<Vec3> viewpoint;
   void validate() const;         ///< throws std::invalid_argument
 };
 
