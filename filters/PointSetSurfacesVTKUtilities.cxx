@@ -7,13 +7,10 @@
 #include "vtkIntArray.h"
 #include "vtkObject.h"
 #include "vtkPointSetSurface.h"
-#include "vtkTypeInt32Array.h"
-#include "vtkTypeInt64Array.h"
 
 #include "pss/Parallel.h"
 
 #include <algorithm>
-#include <climits>
 
 namespace pss_vtk
 {
@@ -53,36 +50,6 @@ pss::Orientation OrientationFor(const double* viewpoint, const pss::Vec3& centro
 {
   return viewpoint ? pss::Orientation::toward(pss::Vec3(viewpoint[0], viewpoint[1], viewpoint[2]))
                    : pss::Orientation::awayFrom(centroid);
-}
-
-namespace
-{
-
-template <class ArrayT>
-vtkSmartPointer<vtkCellArray> VertexCellsOf(vtkIdType n)
-{
-  vtkNew<ArrayT> offsets;
-  vtkNew<ArrayT> connectivity;
-  offsets->SetNumberOfValues(n + 1);
-  connectivity->SetNumberOfValues(n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    offsets->SetValue(i, static_cast<typename ArrayT::ValueType>(i));
-    connectivity->SetValue(i, static_cast<typename ArrayT::ValueType>(i));
-  }
-  offsets->SetValue(n, static_cast<typename ArrayT::ValueType>(n));
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  cells->SetData(offsets, connectivity);
-  return cells;
-}
-
-} // namespace
-
-vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n)
-{
-  // 32-bit ids while they fit: half the memory of a large cloud's vertices, and readable by every
-  // VTK reader (the XML files record the type).
-  return n < vtkIdType(INT32_MAX) ? VertexCellsOf<vtkTypeInt32Array>(n) : VertexCellsOf<vtkTypeInt64Array>(n);
 }
 
 void AddSurfaceFieldData(vtkDataObject* output, vtkPointSetSurface* surface)

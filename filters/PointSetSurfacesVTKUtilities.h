@@ -14,6 +14,8 @@
 #include "vtkPoints.h"
 #include "vtkSmartPointer.h"
 
+#include "PointSetSurfacesVertexCells.h"
+
 #include "pss/ExtremalSurface.h"
 #include "pss/Types.h"
 
@@ -43,9 +45,6 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, vtkIdType tuples, int compone
 /// n's orientation: toward @p viewpoint when it is given (a sensor's position, three values),
 /// else away from @p centroid (the rule for closed shapes).
 pss::Orientation OrientationFor(const double* viewpoint, const pss::Vec3& centroid);
-
-/// One vertex cell per point 0..n-1.
-vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType n);
 
 /// Records the h and the dimension a prepared @p surface used as field data "ScaleFactor" and
 /// "Dimension" of @p output, so files written downstream say how they were made.

@@ -2,6 +2,7 @@
 #include "vtkPCDReader.h"
 
 #include "PointSetSurfacesPCD.h"
+#include "PointSetSurfacesVertexCells.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
@@ -18,8 +19,6 @@
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
-#include "vtkTypeInt32Array.h"
-#include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -291,35 +290,6 @@ void MarkNonFinite(const Field& field, const unsigned char* column, std::vector<
   }
 }
 
-// One vertex cell per point; 32-bit offsets while they fit (half the memory of VTK's default).
-template <typename ArrayT>
-vtkSmartPointer<vtkCellArray> VerticesOf(vtkIdType n)
-{
-  vtkNew<ArrayT> offsets;
-  vtkNew<ArrayT> connectivity;
-  offsets->SetNumberOfValues(n + 1);
-  connectivity->SetNumberOfValues(n);
-  auto* o = offsets->GetPointer(0);
-  auto* c = connectivity->GetPointer(0);
-  using Value = typename ArrayT::ValueType;
-  ForRange(static_cast<std::size_t>(n), [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      o[i] = static_cast<Value>(i);
-      c[i] = static_cast<Value>(i);
-    }
-  });
-  o[n] = static_cast<Value>(n);
-  auto cells = vtkSmartPointer<vtkCellArray>::New();
-  cells->SetData(offsets, connectivity);
-  return cells;
-}
-
-vtkSmartPointer<vtkCellArray> Vertices(vtkIdType n)
-{
-  return n < VTK_INT_MAX ? VerticesOf<vtkTypeInt32Array>(n) : VerticesOf<vtkTypeInt64Array>(n);
-}
-
 template <typename ArrayT, typename T>
 void AddFieldData(vtkPolyData* output, const char* name, std::initializer_list<T> values)
 {
@@ -437,7 +407,7 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   output->SetPoints(MakePoints(source, xyz));
   if (this->GenerateVertices)
   {
-    output->SetVerts(Vertices(kept));
+    output->SetVerts(pss_vtk::VertexCells(kept));
   }
   vtkPointData* pointData = output->GetPointData();
 

@@ -20,4 +20,5 @@ set(PSS_PCD_SOURCES
   "${CMAKE_CURRENT_LIST_DIR}/../../filters/vtkPCDReader.cxx"
   "${CMAKE_CURRENT_LIST_DIR}/../../filters/vtkPCDWriter.cxx"
   "${CMAKE_CURRENT_LIST_DIR}/../../filters/PointSetSurfacesPCD.cxx"
-  "${CMAKE_CURRENT_LIST_DIR}/../../filters/PointSetSurfacesPCDBody.cxx")
+  "${CMAKE_CURRENT_LIST_DIR}/../../filters/PointSetSurfacesPCDBody.cxx"
+  "${CMAKE_CURRENT_LIST_DIR}/../../filters/PointSetSurfacesVertexCells.cxx")

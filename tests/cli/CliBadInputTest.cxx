@@ -410,3 +410,23 @@ TEST(CliBadInput, MalformedPcd)
     "has 2 SIZE, 3 TYPE");
   ExpectRejected(Write("zero.pcd", fields + "WIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA binary\n"), "empty");
 }
+
+// --viewpoint: not three numbers is a usage error (exit 2); a non-finite one the filter's error.
+TEST(CliBadInput, ViewpointFlag)
+{
+  std::string grid;
+  for (int i = 0; i < 100; ++i)
+  {
+    grid += std::to_string(0.1 * (i % 10)) + " " + std::to_string(0.1 * (i / 10)) + " 0\n";
+  }
+  const std::string cloud = Write("viewpoint-grid.xyz", grid);
+  const std::string out = " -o " + TempPath("viewpoint-out.vtp");
+  CommandResult r = RunCommand(Pss() + " project " + cloud + " --viewpoint 1,2" + out);
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("--viewpoint takes X,Y,Z, input or off, not '1,2'"), std::string::npos) << r.output;
+  r = RunCommand(Pss() + " project " + cloud + " --viewpoint 0,nan,1" + out);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("is not finite"), std::string::npos) << r.output;
+  r = RunCommand(Pss() + " project " + cloud + " --viewpoint 0,0,1 --h 0.3" + out);
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+}
