@@ -2,6 +2,7 @@
 #include "PointSetSurfacesPCD.h"
 
 #include "PointSetSurfacesPCDBody.h"
+#include "PointSetSurfacesWords.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -28,25 +29,7 @@ namespace detail
 
 std::vector<std::string_view> Tokens(std::string_view line)
 {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < line.size())
-  {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
-    {
-      ++i;
-    }
-    const std::size_t begin = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r')
-    {
-      ++i;
-    }
-    if (i > begin)
-    {
-      out.push_back(line.substr(begin, i - begin));
-    }
-  }
-  return out;
+  return pss_vtk::SplitWords(line);
 }
 
 // Overflow-checked a * b.

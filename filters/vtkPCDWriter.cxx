@@ -145,6 +145,10 @@ void FillColumn(const Column& column, const Layout& layout, std::size_t n, unsig
       std::memset(out, 0, layout.rows * width);
     }
   }
+  if (n == 0)
+  {
+    return; // an image with no point at all: every pixel filled above
+  }
   vtkDataArray* array = column.array;
   const auto* data = static_cast<const unsigned char*>(array->GetVoidPointer(0));
   const std::size_t size = column.field.size;
@@ -326,12 +330,9 @@ void vtkPCDWriter::WriteData()
   try
   {
     cloud.columns.bytes.resize(offset);
-    if (n > 0)
+    for (std::size_t f = 0; f < columns.size() && offset > 0; ++f)
     {
-      for (std::size_t f = 0; f < columns.size(); ++f)
-      {
-        FillColumn(columns[f], layout, n, cloud.columns.bytes.data() + cloud.columns.start[f]);
-      }
+      FillColumn(columns[f], layout, n, cloud.columns.bytes.data() + cloud.columns.start[f]);
     }
     const std::vector<unsigned char> bytes = pss_pcd::Encode(cloud);
     std::ofstream out(this->FileName, std::ios::binary | std::ios::trunc);

@@ -59,7 +59,15 @@ int vtkPointSetSurfaceAlgorithm::RequestUpdateExtent(
 bool vtkPointSetSurfaceAlgorithm::PrepareRun(
   pss_vtk::DistributedRun& run, vtkInformationVector** inputVector, vtkPointSet* cloud)
 {
-  return run.Prepare(inputVector, *this->UpstreamWatch, cloud, "", this->GatheredCloud);
+  // The viewpoint first: an error in it fails the same way on every rank (the property, or the
+  // field data every rank's piece of a reader's output carries).
+  return this->ResolveViewpoint(cloud) &&
+    run.Prepare(inputVector, *this->UpstreamWatch, cloud, "", this->GatheredCloud);
+}
+
+const double* vtkPointSetSurfaceAlgorithm::OrientationViewpoint() const
+{
+  return this->HasOrientationViewpoint ? this->ResolvedViewpoint : nullptr;
 }
 
 vtkMultiProcessController* vtkPointSetSurfaceAlgorithm::DistributedController() const
@@ -76,12 +84,13 @@ void vtkPointSetSurfaceAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Viewpoint: " << this->Viewpoint[0] << " " << this->Viewpoint[1] << " " << this->Viewpoint[2] << "\n";
 }
 
-bool vtkPointSetSurfaceAlgorithm::ResolveViewpoint(vtkPointSet* cloud, double viewpoint[3], bool& ok)
+bool vtkPointSetSurfaceAlgorithm::ResolveViewpoint(vtkPointSet* cloud)
 {
-  ok = true;
+  double* viewpoint = this->ResolvedViewpoint;
+  this->HasOrientationViewpoint = false;
   if (this->ViewpointMode == VIEWPOINT_OFF)
   {
-    return false;
+    return true;
   }
   if (this->ViewpointMode == VIEWPOINT_GIVEN)
   {
@@ -92,7 +101,7 @@ bool vtkPointSetSurfaceAlgorithm::ResolveViewpoint(vtkPointSet* cloud, double vi
     vtkDataArray* field = cloud ? cloud->GetFieldData()->GetArray("Viewpoint") : nullptr;
     if (!field || field->GetNumberOfValues() < 3)
     {
-      return false;
+      return true;
     }
     const int components = field->GetNumberOfComponents();
     for (int k = 0; k < 3; ++k)
@@ -104,8 +113,8 @@ bool vtkPointSetSurfaceAlgorithm::ResolveViewpoint(vtkPointSet* cloud, double vi
   {
     vtkErrorMacro(<< "the viewpoint (" << viewpoint[0] << ", " << viewpoint[1] << ", " << viewpoint[2]
                   << ") is not finite");
-    ok = false;
     return false;
   }
+  this->HasOrientationViewpoint = true;
   return true;
 }

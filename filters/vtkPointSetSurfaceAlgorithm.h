@@ -90,9 +90,10 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /**
-   * What RequestData does first: pss_vtk::DistributedRun::Prepare on @p cloud with this filter's
-   * upstream watch, gathering the cloud into GatheredCloud in a distributed run. Collective in a
-   * distributed update; false on every rank after the same error.
+   * What RequestData does first: the viewpoint n is oriented toward (OrientationViewpoint()),
+   * then pss_vtk::DistributedRun::Prepare on @p cloud with this filter's upstream watch,
+   * gathering the cloud into GatheredCloud in a distributed run. Collective in a distributed
+   * update; false on every rank after the same error.
    */
   bool PrepareRun(pss_vtk::DistributedRun& run, vtkInformationVector** inputVector, vtkPointSet* cloud);
 
@@ -106,12 +107,9 @@ protected:
   /// than one process), else nullptr.
   vtkMultiProcessController* DistributedController() const;
 
-  /**
-   * The viewpoint this update orients toward (ViewpointMode, @p cloud's field data): true with
-   * @p viewpoint set, false for the centroid rule. A non-finite one is reported with
-   * vtkErrorMacro and @p ok set false.
-   */
-  bool ResolveViewpoint(vtkPointSet* cloud, double viewpoint[3], bool& ok);
+  /// The viewpoint the last PrepareRun found (ViewpointMode, the cloud's field data), or nullptr
+  /// when n is oriented away from the centroid.
+  const double* OrientationViewpoint() const;
 
   vtkPointSetSurface* Surface = nullptr;
   int ViewpointMode = VIEWPOINT_FROM_INPUT;
@@ -121,7 +119,12 @@ protected:
   vtkSmartPointer<vtkPolyData> GatheredCloud;
 
 private:
+  /// Sets ResolvedViewpoint from ViewpointMode and @p cloud; false (with an error) when not finite.
+  bool ResolveViewpoint(vtkPointSet* cloud);
+
   std::unique_ptr<pss_vtk::UpstreamErrorWatch> UpstreamWatch;
+  bool HasOrientationViewpoint = false;
+  double ResolvedViewpoint[3] = { 0.0, 0.0, 0.0 };
 
   vtkPointSetSurfaceAlgorithm(const vtkPointSetSurfaceAlgorithm&) = delete;
   void operator=(const vtkPointSetSurfaceAlgorithm&) = delete;

@@ -122,13 +122,6 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   // In a distributed run each rank plots its own samples (its piece of the sample points, or of
   // the cloud) on the gathered cloud, or with ghost points; sample ids and the global scale are
   // those of one process.
-  double viewpoint[3];
-  bool viewpointOk = true;
-  const bool towardViewpoint = this->ResolveViewpoint(cloud, viewpoint, viewpointOk);
-  if (!viewpointOk)
-  {
-    return 0;
-  }
   pss_vtk::DistributedRun run(this, this->Surface, this->DistributedController(), this->GhostMargin);
   if (!this->PrepareRun(run, inputVector, cloud))
   {
@@ -308,7 +301,7 @@ int vtkPointSetSurfaceEnergyGlyphs::RequestData(
   auto fitNormal = pss_vtk::NewArray<vtkDoubleArray>("Normal", 0, 3);
   auto fitStability = pss_vtk::NewArray<vtkDoubleArray>("Stability", 0, 1);
   auto fitSample = pss_vtk::NewArray<vtkIdTypeArray>("SampleId", 0, 1);
-  const pss::Orientation orientation = pss_vtk::OrientationFor(towardViewpoint ? viewpoint : nullptr, run.GetCentroid());
+  const pss::Orientation orientation = pss_vtk::OrientationFor(this->OrientationViewpoint(), run.GetCentroid());
   const double half = this->SegmentLength * h;
   std::vector<vtkIdType> ids;
   for (std::size_t s = 0; s < m; ++s)

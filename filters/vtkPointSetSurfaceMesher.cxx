@@ -211,13 +211,6 @@ int vtkPointSetSurfaceMesher::RequestData(
   vtkPointSet* cloud = vtkPointSet::GetData(inputVector[0], 0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   this->GhostRounds = 0;
-  double viewpoint[3];
-  bool viewpointOk = true;
-  const bool towardViewpoint = this->ResolveViewpoint(cloud, viewpoint, viewpointOk);
-  if (!viewpointOk)
-  {
-    return 0;
-  }
   pss_vtk::DistributedRun run(this, this->Surface, this->DistributedController(), this->GhostMargin);
   if (!this->PrepareRun(run, inputVector, cloud))
   {
@@ -225,7 +218,7 @@ int vtkPointSetSurfaceMesher::RequestData(
   }
   vtkMultiProcessController* controller = run.GetController();
   pss::MeshOptions options;
-  if (towardViewpoint)
+  if (const double* viewpoint = this->OrientationViewpoint())
   {
     options.viewpoint = pss::Vec3(viewpoint[0], viewpoint[1], viewpoint[2]);
   }

@@ -172,15 +172,6 @@ int vtkPointSetSurfaceProjection::RequestData(
   const vtkIdType n = starts ? starts->GetNumberOfPoints() : 0;
   vtkPoints* startPoints = n > 0 ? starts->GetPoints() : nullptr;
 
-  // Where n points (a sensor's viewpoint, else away from the centroid): the same on every rank.
-  double viewpoint[3];
-  bool viewpointOk = true;
-  const bool towardViewpoint = this->ResolveViewpoint(cloud, viewpoint, viewpointOk);
-  if (!viewpointOk)
-  {
-    return 0;
-  }
-
   // Prepare: the surface (gathered cloud or ghost run) and this rank's first global id.
   pss_vtk::DistributedRun run(this, this->Surface, this->DistributedController(), this->GhostMargin);
   if (!this->PrepareRun(run, inputVector, cloud))
@@ -220,8 +211,7 @@ int vtkPointSetSurfaceProjection::RequestData(
       return false;
     }
     const pss::PointIndex& index = *this->Surface->GetIndex();
-    const pss::Orientation orientation =
-      pss_vtk::OrientationFor(towardViewpoint ? viewpoint : nullptr, run.GetCentroid());
+    const pss::Orientation orientation = pss_vtk::OrientationFor(this->OrientationViewpoint(), run.GetCentroid());
     const bool completed =
       pss::forEachInOrder(ks, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
         const vtkIdType i = static_cast<vtkIdType>(k);

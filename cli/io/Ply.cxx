@@ -2,6 +2,7 @@
 #include "Ply.h"
 
 #include "Bytes.h"
+#include "PointSetSurfacesWords.h"
 
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
@@ -75,22 +76,9 @@ struct Element
 std::vector<std::string> Words(const std::string& line)
 {
   std::vector<std::string> words;
-  std::size_t i = 0;
-  while (i < line.size())
+  for (const std::string_view word : pss_vtk::SplitWords(line))
   {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
-    {
-      ++i;
-    }
-    const std::size_t begin = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r')
-    {
-      ++i;
-    }
-    if (i > begin)
-    {
-      words.push_back(line.substr(begin, i - begin));
-    }
+    words.emplace_back(word);
   }
   return words;
 }

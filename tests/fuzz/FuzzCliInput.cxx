@@ -108,15 +108,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***)
 {
   // VTK's readers report malformed files on stderr; thousands of messages a second are noise.
   vtkObject::GlobalWarningDisplayOff();
-  const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/pss-fuzz-cli-XXXXXX";
-  std::vector<char> buffer(pattern.begin(), pattern.end());
-  buffer.push_back('\0');
-  if (!mkdtemp(buffer.data()))
-  {
-    FuzzFail("mkdtemp failed", __LINE__);
-  }
-  Folder = buffer.data();
+  Folder = MakeScratchFolder("pss-fuzz-cli");
   std::atexit([]() {
     for (const char* ext : { ".csv", ".xyz", ".txt", ".ply", ".vtp", ".vtu", ".vti", ".roundtrip.csv" })
     {

@@ -85,15 +85,7 @@ bool SameBits(vtkDataArray* a, vtkDataArray* b, bool anyNaN)
 extern "C" int LLVMFuzzerInitialize(int*, char***)
 {
   vtkObject::GlobalWarningDisplayOff();
-  const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/pss-fuzz-pcd-XXXXXX";
-  std::vector<char> buffer(pattern.begin(), pattern.end());
-  buffer.push_back('\0');
-  if (!mkdtemp(buffer.data()))
-  {
-    FuzzFail("mkdtemp failed", __LINE__);
-  }
-  Folder = buffer.data();
+  Folder = MakeScratchFolder("pss-fuzz-pcd");
   std::atexit([]() {
     std::remove((Folder + "/input.pcd").c_str());
     std::remove((Folder + "/again.pcd").c_str());

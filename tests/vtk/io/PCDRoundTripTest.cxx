@@ -297,3 +297,29 @@ TEST(PCDRoundTrip, NaNPointsKeptOnRequest)
   EXPECT_EQ(kept.output->GetNumberOfPoints(), 3);
   EXPECT_EQ(kept.reader->GetNumberOfSkippedPoints(), 0);
 }
+
+TEST(PCDRoundTrip, OrganizedImageWithoutAnyValidPixel)
+{
+  // Every pixel NaN: nothing is read; written again it is still a 2 x 2 image of NaN pixels (the
+  // writer once left the unfilled image's bytes as they were: found by Fuzz.pcd).
+  const std::string nan = Bytes(std::numeric_limits<float>::quiet_NaN());
+  std::string body;
+  for (int i = 0; i < 4; ++i)
+  {
+    body += nan + nan + nan;
+  }
+  const Read r = ReadBytes("all-nan.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nHEIGHT 2\nDATA binary\n" + body);
+  ASSERT_TRUE(r.ok);
+  ASSERT_EQ(r.output->GetNumberOfPoints(), 0);
+  for (int mode : { vtkPCDWriter::ASCII, vtkPCDWriter::BINARY, vtkPCDWriter::BINARY_COMPRESSED })
+  {
+    const std::string path = TestPath("all-nan-again-" + std::to_string(mode) + ".pcd");
+    Write(r.output, path, mode);
+    EXPECT_EQ(ReadPCD(path).output->GetNumberOfPoints(), 0);
+    const Read whole = ReadPCD(path, false);
+    ASSERT_EQ(whole.output->GetNumberOfPoints(), 4);
+    double p[3];
+    whole.output->GetPoint(3, p);
+    EXPECT_TRUE(std::isnan(p[0]) && std::isnan(p[1]) && std::isnan(p[2]));
+  }
+}
