@@ -21,10 +21,10 @@
 namespace pcd_test
 {
 
-/// A path in the build tree for a test file called @p name.
+/// A path under the build tree's Testing/ for a test file called @p name.
 inline std::string TestPath(const std::string& name)
 {
-  return std::string(PSS_BINARY_DIR) + "/pcd_test_" + name;
+  return std::string(PSS_BINARY_DIR) + "/Testing/pcd-" + name;
 }
 
 inline void WriteBytes(const std::string& path, const std::string& bytes)
