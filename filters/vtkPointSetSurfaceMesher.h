@@ -149,7 +149,7 @@ public:
    * else, when the scan has data at its centre (a cloud point within MaxDistance), by the
    * least-area unfolded triangulation of its own vertices (a seam of the orientation or a dropped
    * crossing left it, not the end of the domain). A pinched hole is closed as the simple loops it
-   * is made of. 0 (or 1, 2) closes none. Within [0, 1000]. Default 20.
+   * is made of. 0 (or 1, 2) closes none. Within [0, 1000]. Default 100.
    */
   vtkSetClampMacro(MaxHoleEdges, int, 0, 1000);
   vtkGetMacro(MaxHoleEdges, int);
