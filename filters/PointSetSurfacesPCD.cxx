@@ -2,7 +2,6 @@
 #include "PointSetSurfacesPCD.h"
 
 #include "PointSetSurfacesPCDBody.h"
-#include "PointSetSurfacesWords.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -25,11 +24,6 @@ namespace detail
 [[noreturn]] void Fail(const std::string& message)
 {
   throw std::runtime_error(message);
-}
-
-std::vector<std::string_view> Tokens(std::string_view line)
-{
-  return pss_vtk::SplitWords(line);
 }
 
 // Overflow-checked a * b.
@@ -189,7 +183,7 @@ DataKind ParseDataKind(std::string_view token, std::size_t line)
 // One header line into @p header / @p lines; returns true on the DATA line.
 bool ParseLine(std::string_view text, std::size_t line, Header& header, HeaderLines& lines, std::string& seen)
 {
-  const auto tokens = Tokens(text);
+  const auto tokens = pss_vtk::SplitWords(text);
   if (tokens.empty() || tokens[0].front() == '#')
   {
     return false;

@@ -111,6 +111,9 @@ struct Cloud
  */
 Header ParseHeader(const unsigned char* file, std::size_t size, std::size_t& bodyOffset);
 
+/// Where each field's column starts in the field-major body of @p header's POINTS points.
+std::vector<std::size_t> ColumnStarts(const Header& header);
+
 /// Decodes a whole file held in memory; throws std::runtime_error with a readable message.
 Cloud Decode(const unsigned char* file, std::size_t size);
 

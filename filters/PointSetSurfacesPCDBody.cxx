@@ -31,17 +31,6 @@ constexpr std::uint64_t kLzfMaximumRatio = 88;
 
 } // namespace
 
-std::vector<std::size_t> ColumnStarts(const Header& header)
-{
-  std::vector<std::size_t> start;
-  std::size_t offset = 0;
-  for (const Field& field : header.fields)
-  {
-    start.push_back(offset);
-    offset += static_cast<std::size_t>(header.points) * field.bytesPerPoint();
-  }
-  return start;
-}
 
 namespace
 {
@@ -243,7 +232,7 @@ void DecodeAscii(const Header& header, const unsigned char* body, std::size_t av
     {
       end = text.size();
     }
-    const auto tokens = Tokens(text.substr(position, end - position));
+    const auto tokens = pss_vtk::SplitWords(text.substr(position, end - position));
     position = end + 1;
     ++line;
     if (tokens.empty())
@@ -394,5 +383,18 @@ void EncodeBody(const Cloud& cloud, std::vector<unsigned char>& out)
 }
 
 }
+
+std::vector<std::size_t> ColumnStarts(const Header& header)
+{
+  std::vector<std::size_t> start;
+  std::size_t offset = 0;
+  for (const Field& field : header.fields)
+  {
+    start.push_back(offset);
+    offset += static_cast<std::size_t>(header.points) * field.bytesPerPoint();
+  }
+  return start;
+}
+
 }
 

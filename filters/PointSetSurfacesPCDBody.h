@@ -8,6 +8,7 @@
 #define PointSetSurfacesPCDBody_h
 
 #include "PointSetSurfacesPCD.h"
+#include "PointSetSurfacesWords.h"
 
 #include <charconv>
 #include <string_view>
@@ -19,9 +20,6 @@ namespace detail
 
 /// Throws std::runtime_error(@p message).
 [[noreturn]] void Fail(const std::string& message);
-
-/// The whitespace-separated words of @p line (spaces, tabs, a trailing carriage return).
-std::vector<std::string_view> Tokens(std::string_view line);
 
 /// Overflow-checked a * b into @p out; false when it overflows.
 bool Multiply(std::uint64_t a, std::uint64_t b, std::uint64_t& out);
@@ -47,9 +45,6 @@ void AppendNumber(std::string& out, T value)
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   out.append(buffer, result.ptr);
 }
-
-/// Offsets of each field's column in the field-major body.
-std::vector<std::size_t> ColumnStarts(const Header& header);
 
 /// Decodes the body after the header (@p available bytes at @p body; @p headerLines counts the
 /// header's lines, for the ascii decoder's messages) into @p columns; throws on a lie or a cut.

@@ -320,13 +320,12 @@ void vtkPCDWriter::WriteData()
       }
     }
   }
-  std::size_t offset = 0;
   for (const Column& column : columns)
   {
     header.fields.push_back(column.field);
-    cloud.columns.start.push_back(offset);
-    offset += layout.rows * column.field.bytesPerPoint();
   }
+  cloud.columns.start = pss_pcd::ColumnStarts(header);
+  const std::size_t offset = layout.rows * header.pointSize();
   try
   {
     cloud.columns.bytes.resize(offset);
