@@ -54,6 +54,10 @@ bool CandidateCache::covers(const PointIndex& index, const SurfaceParameters& pa
   {
     return false;
   }
+  if (scaled)
+  {
+    return (y - center).norm() + extra <= margin;
+  }
   const double shift = (y - center).norm() + extra;
   const double reach = centerMinDist + shift;
   return std::sqrt(reach * reach + band) + shift <= radius;
@@ -65,9 +69,16 @@ void CandidateCache::fetch(const PointIndex& index, const SurfaceParameters& par
   indexSerial = index.serial();
   h = params.h;
   band = params.cutoff * params.cutoff * h * h;
+  cutoffSq = params.cutoff * params.cutoff;
   center = y;
   const auto nearest = index.nearest(y);
   centerMinDist = std::sqrt(nearest.second);
+  scaled = index.hasScales();
+  if (scaled)
+  {
+    fetchScaled(index, y, nearest.first, leaves, minMargin);
+    return;
+  }
   const double margin = std::max({ 0.5 * h, std::min(0.05 * centerMinDist, 2.0 * h), minMargin });
   const double reach = centerMinDist + margin;
   radius = std::sqrt(reach * reach + band) + margin;
@@ -151,6 +162,81 @@ Eigen::VectorBlock<Eigen::ArrayXd> CandidateCache::squaredDistances(const Vec3& 
   return sq;
 }
 
+// With a scale per point. For a query y' within margin m of y, some point j (here y's nearest,
+// at distance d_j) bounds the smallest scaled distance: s(y') <= (d_j + m)^2 / h_j^2, so every
+// point y' can need has |p_i - y'| < sigma h_i with sigma^2 = (d_j + m)^2 / h_j^2 + cutoff^2, and
+// so |p_i - y| < m + sigma h_i: the fetch keeps those (the tree's walk skips the nodes whose
+// largest scale cannot reach). Exact whatever the scales are, smooth or not.
+void CandidateCache::fetchScaled(
+  const PointIndex& index, const Vec3& y, std::size_t nearest, PointIndex::LeafRanges& leaves, double minMargin)
+{
+  const double hj = index.scale(nearest);
+  margin = std::max({ 0.5 * hj, std::min(0.05 * centerMinDist, 2.0 * hj), minMargin });
+  const double reach = centerMinDist + margin;
+  const double sigma = std::sqrt(reach * reach * index.inverseSqScale(nearest) + cutoffSq);
+  radius = std::numeric_limits<double>::infinity(); // not used: covers() reads margin
+  const bool ranked = index.coordinateOrder();
+  std::size_t kept = 0;
+  Eigen::Index n = 0;
+  index.forEachLeafInScaledBall(y, margin, sigma, leaves, [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t i = begin; i < end; ++i)
+    {
+      const double r = margin + sigma * index.scale(i);
+      if (!((index.point(i) - y).squaredNorm() < r * r))
+      {
+        continue;
+      }
+      if (ranked)
+      {
+        ranks.resize(std::max<std::size_t>(kept + 1, ranks.size()));
+        ranks[kept++] = std::uint64_t(index.coordinateRank(i)) << 32 | i;
+      }
+      else
+      {
+        reserve(n + 1);
+        const Vec3& p = index.point(i);
+        px[n] = p.x();
+        py[n] = p.y();
+        pz[n] = p.z();
+        pk[n] = index.inverseSqScale(i);
+        ph[n] = index.scale(i);
+        ++n;
+      }
+    }
+  });
+  if (ranked)
+  {
+    ranks.resize(kept);
+    sortByRank(ranks, rankScratch, index.size());
+    n = static_cast<Eigen::Index>(kept);
+    reserve(n);
+    for (Eigen::Index k = 0; k < n; ++k)
+    {
+      const auto i = static_cast<std::uint32_t>(ranks[static_cast<std::size_t>(k)]);
+      const Vec3& p = index.point(i);
+      px[k] = p.x();
+      py[k] = p.y();
+      pz[k] = p.z();
+      pk[k] = index.inverseSqScale(i);
+      ph[k] = index.scale(i);
+    }
+  }
+  count = n;
+  // The nearest point is always kept (sigma h_j > d_j + margin), unless the arithmetic overflowed.
+  reusable = count > 0 && std::isfinite(sigma);
+  if (count == 0)
+  {
+    reserve(1);
+    const Vec3& p = index.point(nearest);
+    px[0] = p.x();
+    py[0] = p.y();
+    pz[0] = p.z();
+    pk[0] = index.inverseSqScale(nearest);
+    ph[0] = index.scale(nearest);
+    count = 1;
+  }
+}
+
 // The same guarantee as a fetch at c with margin reach, from a scan of wider's candidates
 // instead of a k-d tree query.
 void CandidateCache::focus(const CandidateCache& wider, const Vec3& c, double reach, Eigen::ArrayXd& sq)
@@ -158,8 +244,15 @@ void CandidateCache::focus(const CandidateCache& wider, const Vec3& c, double re
   indexSerial = wider.indexSerial;
   h = wider.h;
   band = wider.band;
+  cutoffSq = wider.cutoffSq;
+  scaled = wider.scaled;
   center = c;
   const Eigen::Index m = wider.count;
+  if (scaled)
+  {
+    focusScaled(wider, c, reach, sq);
+    return;
+  }
   centerMinDist = std::sqrt(wider.squaredDistances(c, sq).minCoeff());
   const double outer = centerMinDist + reach;
   radius = std::sqrt(outer * outer + band) + reach;
@@ -184,6 +277,34 @@ void CandidateCache::focus(const CandidateCache& wider, const Vec3& c, double re
   reusable = wider.reusable && n > 0 && std::isfinite(sqRadius);
 }
 
+// focus() with a scale per point: fetchScaled's bound, from the candidate nearest to c.
+void CandidateCache::focusScaled(const CandidateCache& wider, const Vec3& c, double reach, Eigen::ArrayXd& sq)
+{
+  const Eigen::Index m = wider.count;
+  const auto d2 = wider.squaredDistances(c, sq);
+  Eigen::Index j = 0;
+  const double minSq = d2.minCoeff(&j);
+  centerMinDist = std::sqrt(minSq);
+  margin = reach;
+  const double outer = centerMinDist + reach;
+  const double sigma = std::sqrt(outer * outer * wider.pk[j] + cutoffSq);
+  radius = std::numeric_limits<double>::infinity();
+  reserve(m);
+  Eigen::Index n = 0;
+  for (Eigen::Index i = 0; i < m; ++i)
+  {
+    const double r = reach + sigma * wider.ph[i];
+    px[n] = wider.px[i];
+    py[n] = wider.py[i];
+    pz[n] = wider.pz[i];
+    pk[n] = wider.pk[i];
+    ph[n] = wider.ph[i];
+    n += d2[i] < r * r ? 1 : 0;
+  }
+  count = n;
+  reusable = wider.reusable && n > 0 && std::isfinite(sigma);
+}
+
 void CandidateCache::reserve(Eigen::Index n)
 {
   if (px.size() < n)
@@ -192,6 +313,16 @@ void CandidateCache::reserve(Eigen::Index n)
     px.conservativeResize(capacity);
     py.conservativeResize(capacity);
     pz.conservativeResize(capacity);
+    if (scaled)
+    {
+      pk.conservativeResize(capacity);
+      ph.conservativeResize(capacity);
+    }
+  }
+  if (scaled && pk.size() < px.size())
+  {
+    pk.conservativeResize(px.size());
+    ph.conservativeResize(px.size());
   }
 }
 } // namespace pss

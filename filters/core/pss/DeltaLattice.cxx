@@ -65,7 +65,9 @@ void LatticeCache::clear()
 
 DeltaLattice::DeltaLattice(const DistanceField& field)
   : Field(field)
-  , Spacing(field.parameters().deltaLattice * field.parameters().h)
+  // With a scale per point, in units of the smallest: every region is sampled at least as finely.
+  , Spacing(field.parameters().deltaLattice *
+      (field.index().hasScales() ? field.index().minScale() : field.parameters().h))
   , Planar(field.index().dimension() == 2)
 {
 }

@@ -110,6 +110,9 @@ public:
     Eigen::Vector2d tilt = Eigen::Vector2d::Zero();
     double curvature = 0.0;
     Eigen::Matrix2d tiltHessian = Eigen::Matrix2d::Zero();
+    /// sum weight F'(delta) <grad delta, w> (w the node's in-plane offset in units of h): how e
+    /// changes with the window's scale, for the slope when that scale moves (a scale per point).
+    double radial = 0.0;
   };
 
   IntegralEnergy(const PointIndex& index, const SurfaceParameters& params);
@@ -127,6 +130,10 @@ public:
 
 private:
   PlaneIntegral sum(const Vec3& x, const Frame& f, Derivatives order, const GaussHermiteRule& rule, Workspace& ws) const;
+  /// The window's scale at @p x and, with a scale per point, its gradient (else left unchanged).
+  double windowScale(const Vec3& x, Vec3& gradient, Workspace& ws) const;
+  /// The slope's term for a window whose scale @p h changes at the rate @p dh along the normal.
+  static PlaneIntegral withWindow(PlaneIntegral sums, double h, double dh, bool planar);
 
   const PointIndex& Index;
   const SurfaceParameters Params;

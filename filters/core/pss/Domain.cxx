@@ -127,7 +127,9 @@ DomainEvidence classifyStart(const SurfaceDefinition& s, const Vec3& start, cons
   const Direction cloudNormal = normals ? normals->at(nearest.first, ws) : cloudNormalAt(s, nearest.first, ws);
   ev.normalAngle = unorientedAngleDegrees(r.direction.n, cloudNormal.n);
 
-  const bool far = ev.distanceToCloud > thresholds.maxDistance * s.h();
+  // In units of the nearest point's own scale when the cloud has one per point.
+  const double h = index.hasScales() ? index.scale(nearest.first) : s.h();
+  const bool far = ev.distanceToCloud > thresholds.maxDistance * h;
   const bool misaligned = cloudNormal.defined && ev.normalAngle > thresholds.maxNormalAngle;
   ev.label = far || misaligned ? DomainLabel::Spurious : DomainLabel::InDomain;
   return ev;

@@ -74,7 +74,7 @@ double scaledCurvature(const SurfaceDefinition& s, const Vec3& x, const Vec3& n,
   {
     return at.curvature;
   }
-  const double eps = 1e-4 * s.h();
+  const double eps = 1e-4 * s.scaleAt(x, ws);
   const LineSample plus = s.lineSample(x + eps * n, n, ws);
   const LineSample minus = s.lineSample(x - eps * n, n, ws);
   const double sp = plus.slope * std::exp(plus.logScale - at.logScale);
@@ -130,7 +130,7 @@ LineExtremum nearestExtremumOnLine(
   // Seeking a maximum of e is seeking a minimum of -e: flip the derivatives' signs once, here.
   const double sign = seekMaximum ? -1.0 : 1.0;
   const ExtremumType wanted = seekMaximum ? ExtremumType::Maximum : ExtremumType::Minimum;
-  const double h = s.h();
+  const double h = s.scaleAt(x, ws);
   auto sample = [&](double t) {
     const LineSample ls = s.lineSample(x + t * a, a, ws);
     ScaledSlope p;
@@ -297,7 +297,8 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   }
   const PointIndex& index = s.index();
   Vec3 x = index.restrict(startIn);
-  const double h = s.h();
+  // Travel and tolerance in units of the scale at the start (h itself without a scale per point).
+  const double h = s.scaleAt(x, ws);
   const bool plane = opt.procedure == Procedure::Plane;
   // The plane procedure needs n(x) and c(x) - x at every iterate; planeFit gets both from one
   // neighbourhood. Each iterate's fit starts from what the previous one left in memory.

@@ -45,6 +45,7 @@ IntegralEnergy::PlaneIntegral scaled(IntegralEnergy::PlaneIntegral sums, double 
 {
   sums.value *= jacobian;
   sums.slope *= jacobian;
+  sums.radial *= jacobian;
   sums.tilt *= jacobian;
   sums.curvature *= jacobian;
   sums.tiltHessian *= jacobian;
@@ -118,9 +119,12 @@ double IntegralEnergy::roughValue(const Vec3& x, const Vec3& a, Workspace& ws) c
 IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
   const Vec3& x, const Frame& f, Derivatives order, const GaussHermiteRule& rule, Workspace& ws) const
 {
-  const double h = Params.h;
   const int p = Params.integrandPower;
   const Vec3 origin = Index.restrict(x);
+  // The Gaussian window over the plane has the scale at x (Neighbourhood::localScale); with a
+  // scale per point it moves with x, which adds a term to the slope below.
+  Vec3 windowGradient = Vec3::Zero();
+  const double h = windowScale(origin, windowGradient, ws);
   const bool planar = Index.dimension() == 2;
   const bool lattice = Params.deltaLattice > 0.0;
   PlaneIntegral out;
@@ -147,6 +151,7 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
     const Eigen::Vector2d w(u, v);
     out.value += weight * (p == 2 ? d * d : d);
     out.slope += s;
+    out.radial += weight * dF * (u * f.b1.dot(jet.gradient) + v * f.b2.dot(jet.gradient));
     out.tilt -= (s * h) * w;
     const double alongA = weight * (ddF * ga * ga + dF * jet.curvature);
     const Eigen::Vector2d gb(f.b1.dot(jet.gradient), f.b2.dot(jet.gradient));
@@ -169,7 +174,7 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
         accumulate(rule.nodes[j], vAt(k), weightAt(j, k));
       }
     }
-    return scaled(out, jacobian);
+    return withWindow(scaled(out, jacobian), h, f.a.dot(windowGradient), planar);
   }
   // Every node lies within h * max|node| (times sqrt(2) in 3D) of x: one candidate fetch serves
   // all. The nodes are then visited by halves of the line, quarters of the plane, each with
@@ -204,7 +209,29 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
       }
     }
   }
-  return scaled(out, jacobian);
+  return withWindow(scaled(out, jacobian), h, f.a.dot(windowGradient), planar);
+}
+
+double IntegralEnergy::windowScale(const Vec3& x, Vec3& gradient, Workspace& ws) const
+{
+  if (!Index.hasScales())
+  {
+    return Params.h;
+  }
+  gatherNeighbourhood(Index, Params, x, ws.scale, ws);
+  gradient = ws.scale.localScaleGradient;
+  return ws.scale.localScale;
+}
+
+// e = J(h) sum_w weight F(delta(x + h w)), J = h^2 (h on a line), so with the window's scale
+// moving at the rate dh along a the slope gains dh de/dh = dh (J'/J e + J sum weight F' <grad delta, w>).
+IntegralEnergy::PlaneIntegral IntegralEnergy::withWindow(PlaneIntegral sums, double h, double dh, bool planar)
+{
+  if (dh != 0.0)
+  {
+    sums.slope += dh * ((planar ? 1.0 : 2.0) / h * sums.value + sums.radial);
+  }
+  return sums;
 }
 
 double IntegralEnergy::value(const Vec3& y, const Vec3& a, Workspace& ws) const

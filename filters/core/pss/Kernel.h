@@ -18,6 +18,12 @@
  *
  * Offsets are stored as p_i - y, with the query as local origin, so covariances of clouds with
  * coordinates around 1e6 do not lose their digits.
+ *
+ * With a scale per point (PointIndex::setScales) every formula above holds with h replaced by the
+ * point's own h_i: w_i = exp(-(d_i^2 / h_i^2 - s)), s = min_j d_j^2 / h_j^2 (the point of largest
+ * weight has w = 1), the log-scale is -s, and the neighbourhood holds the points with
+ * d_i^2 / h_i^2 < s + cutoff^2. Derivatives of the weights then carry each point's 1 / h_i^2
+ * (Neighbourhood::inverseSqScale) where the single scale's 1 / h^2 stood.
  */
 #pragma once
 
@@ -36,7 +42,10 @@ struct Workspace;
 /// Parameters shared by every surface definition.
 struct SurfaceParameters
 {
-  double h = 1.0;             ///< Gaussian scale (theta = exp(-d^2/h^2)); must be > 0 and finite
+  /// Gaussian scale (theta = exp(-d^2/h^2)); must be > 0 and finite. When the index has a scale
+  /// per point (PointIndex::hasScales) those are the weights' scales and h is only a typical value
+  /// (the unit of the delta lattice and of a distributed run's margins).
+  double h = 1.0;
   double cutoff = 3.0;        ///< truncation, in units of h, beyond the nearest point (see above)
   int quadratureOrder = 6;    ///< Gauss-Hermite nodes per in-plane axis for e_I (1..32)
   int integrandPower = 2;     ///< e_I integrates delta^power; the paper uses 2 (appendix: 1 is blind)
@@ -69,6 +78,18 @@ struct Neighbourhood
   Eigen::ArrayXd dx, dy, dz;   ///< p_i - y, per coordinate
   Eigen::ArrayXd sqDist;       ///< |p_i - y|^2
   Eigen::ArrayXd weight;       ///< exp(-(|p_i - y|^2 - minSqDist) / h^2), in (0, 1]
+  /// A scale per point (PointIndex::hasScales): weight is exp(-(|p_i - y|^2 / h_i^2 -
+  /// minScaledSqDist)), inverseSqScale holds each neighbour's 1 / h_i^2 and invH2 is not used.
+  bool scaled = false;
+  double minScaledSqDist = 0.0;   ///< scaled: min_i |p_i - y|^2 / h_i^2
+  Eigen::ArrayXd inverseSqScale;  ///< scaled: 1 / h_i^2 per neighbour
+  /// The scale at y: sum_i theta_N(y, p_i) h_i, the weighted mean of the neighbours' scales (h
+  /// itself without a scale per point). What "units of h" mean at y: tolerances, steps, the
+  /// domain's distances, e_I's window.
+  double localScale = 0.0;
+  /// The gradient of localScale in y (zero without a scale per point):
+  /// 2 sum_i theta_N k_i (h_i - localScale) r_i.
+  Vec3 localScaleGradient = Vec3::Zero();
   /// What the contents were gathered for (index serial, h, cutoff; 0 = nothing yet), so that a
   /// second gather of the same query is free.
   std::uint64_t indexSerial = 0;
@@ -81,9 +102,10 @@ struct Neighbourhood
   auto z() const { return dz.head(count); }
   auto d2() const { return sqDist.head(count); }
   auto w() const { return weight.head(count); }
+  auto k() const { return inverseSqScale.head(count); }
   Vec3 offset(Eigen::Index i) const { return Vec3(dx[i], dy[i], dz[i]); }
   /// log of the factor that turns weight into the true Gaussian theta(y, p_i).
-  double logScale() const { return -minSqDist * invH2; }
+  double logScale() const { return scaled ? -minScaledSqDist : -minSqDist * invH2; }
   /// Sets size() to @p n, growing the arrays' capacity when needed (with room for one vector
   /// more: the arrays are processed in whole vectors, padded with weight 0 after the last entry).
   void resize(Eigen::Index n);

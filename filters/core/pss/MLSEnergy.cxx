@@ -21,11 +21,29 @@ LineSample MLSEnergy::lineSample(const Vec3& y, const Vec3& a, Workspace& ws) co
   // d theta_i/dt = theta_i 2 s_i / h^2 and d s_i/dt = -1, so dN/dt = sum theta_i (2 s_i^3 / h^2 - 2 s_i)
   // and d2N/dt2 = sum theta_i (4 s_i^4 / h^4 - 10 s_i^2 / h^2 + 2).
   const LineMoments m = lineMoments(nb, a);
-  const double k = nb.invH2;
   const double w = nb.weightSum;
   const double n = m.s2;
-  const double dn = 2.0 * k * m.s3 - 2.0 * m.s1;
-  const double ddn = 4.0 * k * k * m.s4 - 10.0 * k * m.s2 + 2.0 * w;
+  double dn = 0.0, ddn = 0.0, dw = 0.0, ddw = 0.0;
+  if (nb.scaled)
+  {
+    // The same derivatives with each point's own k_i = 1 / h_i^2 inside the sums.
+    const auto s = (a.x() * nb.x() + a.y() * nb.y() + a.z() * nb.z()).eval();
+    const auto wk = (nb.w() * nb.k()).eval();
+    const auto wkk = (wk * nb.k()).eval();
+    const auto s2 = s.square().eval();
+    dn = 2.0 * (wk * s2 * s).sum() - 2.0 * m.s1;
+    ddn = 4.0 * (wkk * s2.square()).sum() - 10.0 * (wk * s2).sum() + 2.0 * w;
+    dw = 2.0 * (wk * s).sum();
+    ddw = 4.0 * (wkk * s2).sum() - 2.0 * wk.sum();
+  }
+  else
+  {
+    const double k = nb.invH2;
+    dn = 2.0 * k * m.s3 - 2.0 * m.s1;
+    ddn = 4.0 * k * k * m.s4 - 10.0 * k * m.s2 + 2.0 * w;
+    dw = 2.0 * k * m.s1;
+    ddw = 4.0 * k * k * m.s2 - 2.0 * k * w;
+  }
   LineSample out;
   out.nearestSqDist = nb.minSqDist;
   if (Weighting == Weights::Plain)
@@ -37,9 +55,7 @@ LineSample MLSEnergy::lineSample(const Vec3& y, const Vec3& a, Workspace& ws) co
     return out;
   }
   // e = N / W with W = sum w_i: the quotient rule, with dW/dt = sum w_i 2 s_i / h^2 and
-  // d2W/dt2 = sum w_i (4 s_i^2 / h^4 - 2 / h^2).
-  const double dw = 2.0 * k * m.s1;
-  const double ddw = 4.0 * k * k * m.s2 - 2.0 * k * w;
+  // d2W/dt2 = sum w_i (4 s_i^2 / h^4 - 2 / h^2) (dw, ddw above).
   out.value = n / w;
   out.slope = dn / w - n * dw / (w * w);
   out.curvature = ddn / w - 2.0 * dn * dw / (w * w) - n * ddw / (w * w) + 2.0 * n * dw * dw / (w * w * w);

@@ -54,7 +54,7 @@ void Neighbourhood::resize(Eigen::Index n)
   if (dx.size() < needed)
   {
     const Eigen::Index capacity = std::max<Eigen::Index>(needed, 2 * dx.size());
-    for (Eigen::ArrayXd* a : { &dx, &dy, &dz, &sqDist, &weight })
+    for (Eigen::ArrayXd* a : { &dx, &dy, &dz, &sqDist, &weight, &inverseSqScale })
     {
       a->resize(capacity);
     }
@@ -70,7 +70,8 @@ void prefetchNeighbourhoods(
   {
     // Half an h of slack beyond the reach asked for, so that nearby centres (the steps of a
     // projection, the samples of a line search) reuse the same fetch.
-    ws.wide.fetch(index, params, c, ws.leaves, reach + 0.5 * params.h);
+    // (With a scale per point the fetch adds half the nearest point's own scale.)
+    ws.wide.fetch(index, params, c, ws.leaves, reach + (index.hasScales() ? 0.0 : 0.5 * params.h));
   }
 }
 
@@ -94,18 +95,100 @@ void noteReach(const PointIndex& index, const Vec3& y, double sqRadius, Workspac
   }
 }
 
+namespace
+{
+
+// The ball an evaluation at y reads with a scale per point: every point with
+// d^2 / h_i^2 < s + cutoff^2 lies within the largest scale times sqrt(s + cutoff^2).
+double scaledReachSq(const PointIndex& index, const Neighbourhood& nb, double cutoff)
+{
+  return index.maxScale() * index.maxScale() * (nb.minScaledSqDist + cutoff * cutoff);
+}
+
+// gatherNeighbourhood with a scale per point (the file comment of Kernel.h): the scaled squared
+// distances s_i = d_i^2 / h_i^2 take the place of d_i^2 / h^2, per candidate.
+void gatherScaled(const PointIndex& index, const SurfaceParameters& params, const CandidateCache& cache,
+  Neighbourhood& nb, Workspace& ws)
+{
+  const Eigen::Index m = cache.count;
+  const auto sq = cache.squaredDistances(nb.origin, ws.candidateSq);
+  const auto scaledSq = (sq * cache.pk.head(m)).eval();
+  const double minScaled = scaledSq.minCoeff();
+  const double bound = minScaled + params.cutoff * params.cutoff;
+  nb.resize(m);
+  Eigen::Index n = 0;
+  double minSq = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < m; ++i)
+  {
+    if (scaledSq[i] < bound)
+    {
+      nb.dx[n] = cache.px[i] - nb.origin.x();
+      nb.dy[n] = cache.py[i] - nb.origin.y();
+      nb.dz[n] = cache.pz[i] - nb.origin.z();
+      nb.sqDist[n] = sq[i];
+      nb.inverseSqScale[n] = cache.pk[i];
+      nb.weight[n] = minScaled - scaledSq[i]; // the exponent, for expNonPositive below
+      minSq = std::min(minSq, sq[i]);
+      ++n;
+    }
+  }
+  // The last vector is padded with neighbours of weight 0 at offset 0, which add nothing.
+  const Eigen::Index padded = (n + SimdLanes - 1) / SimdLanes * SimdLanes;
+  for (Eigen::Index i = n; i < padded; ++i)
+  {
+    nb.dx[i] = nb.dy[i] = nb.dz[i] = 0.0;
+    nb.sqDist[i] = std::numeric_limits<double>::infinity();
+    nb.inverseSqScale[i] = 0.0;
+    nb.weight[i] = -std::numeric_limits<double>::infinity();
+  }
+  expNonPositive(nb.weight.data(), nb.weight.data(), padded);
+  nb.count = n;
+  nb.minSqDist = minSq;
+  nb.minScaledSqDist = minScaled;
+  const auto w = nb.w();
+  nb.weightSum = w.sum();
+  nb.moment = Vec3((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum());
+  // Each neighbour's h_i from its 1 / h_i^2 would cost a square root: the scales are kept.
+  double scaleSum = 0.0;
+  Vec3 kr = Vec3::Zero();  // sum w_i k_i r_i
+  Vec3 khr = Vec3::Zero(); // sum w_i k_i h_i r_i
+  for (Eigen::Index i = 0, j = 0; i < m; ++i)
+  {
+    if (scaledSq[i] < bound)
+    {
+      const double w = nb.weight[j];
+      const Vec3 wkr = (w * nb.inverseSqScale[j]) * nb.offset(j);
+      scaleSum += w * cache.ph[i];
+      kr += wkr;
+      khr += cache.ph[i] * wkr;
+      ++j;
+    }
+  }
+  nb.localScale = scaleSum / nb.weightSum;
+  nb.localScaleGradient = 2.0 * (khr - nb.localScale * kr) / nb.weightSum;
+  noteReach(index, nb.origin, scaledReachSq(index, nb, params.cutoff), ws);
+}
+
+} // namespace
+
 void gatherNeighbourhood(
   const PointIndex& index, const SurfaceParameters& params, const Vec3& y, Neighbourhood& nb, Workspace& ws)
 {
   const Vec3 origin = index.restrict(y);
   if (nb.indexSerial == index.serial() && nb.h == params.h && nb.cutoff == params.cutoff && nb.origin == origin)
   {
-    noteReach(index, origin, nb.minSqDist + params.cutoff * params.cutoff * params.h * params.h, ws);
+    noteReach(index, origin,
+      nb.scaled ? scaledReachSq(index, nb, params.cutoff)
+                : nb.minSqDist + params.cutoff * params.cutoff * params.h * params.h,
+      ws);
     return;
   }
   nb.indexSerial = 0; // until the new contents are complete
   nb.origin = origin;
   nb.invH2 = 1.0 / (params.h * params.h);
+  nb.scaled = index.hasScales();
+  nb.localScale = params.h;
+  nb.localScaleGradient = Vec3::Zero();
   // Either cache holds, in index order, every point the neighbourhood can need, so which one
   // serves the query does not change a bit of the result.
   const bool focused = ws.focused.covers(index, params, nb.origin);
@@ -113,6 +196,14 @@ void gatherNeighbourhood(
   if (!focused && !cache.covers(index, params, nb.origin))
   {
     cache.fetch(index, params, nb.origin, ws.leaves);
+  }
+  if (nb.scaled)
+  {
+    gatherScaled(index, params, cache, nb, ws);
+    nb.indexSerial = index.serial();
+    nb.h = params.h;
+    nb.cutoff = params.cutoff;
+    return;
   }
   const Eigen::Index m = cache.count;
   // Offsets are p - y from absolute coordinates: for large coordinates this subtraction is the

@@ -209,47 +209,6 @@ int detectDimension(const Vec3& lo, const Vec3& hi)
   return hi.z() - lo.z() <= 1e-12 * extent ? 2 : 3;
 }
 
-double estimateScale(const PointIndex& index, int k, double multiplier, int threads)
-{
-  if (k < 1 || index.size() < static_cast<std::size_t>(k) + 1)
-  {
-    return 0.0;
-  }
-  const std::size_t samples = std::min<std::size_t>(index.size(), 2000);
-  // Each sample's distance goes to its own slot, so that the distances are kept in sample order
-  // (the order nth_element sees) whichever thread measured them.
-  std::vector<double> measured(samples, 0.0);
-  std::vector<std::uint8_t> kept(samples, 0);
-  parallelFor(samples, threads, [&](std::size_t begin, std::size_t end) {
-    std::vector<std::pair<std::uint32_t, double>> found;
-    for (std::size_t s = begin; s < end; ++s)
-    {
-      const std::size_t i = s * index.size() / samples;
-      index.kNearest(index.point(i), static_cast<std::size_t>(k) + 1, found); // the point itself is first
-      if (found.size() == static_cast<std::size_t>(k) + 1)
-      {
-        measured[s] = std::sqrt(found.back().second);
-        kept[s] = 1;
-      }
-    }
-  });
-  std::vector<double> distances;
-  distances.reserve(samples);
-  for (std::size_t s = 0; s < samples; ++s)
-  {
-    if (kept[s])
-    {
-      distances.push_back(measured[s]);
-    }
-  }
-  if (distances.empty())
-  {
-    return 0.0;
-  }
-  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
-  return multiplier * distances[distances.size() / 2];
-}
-
 namespace
 {
 
@@ -278,14 +237,20 @@ void fillIota(std::vector<std::uint32_t>& values, int threads)
   });
 }
 
+// Serials for PointIndex::serial(): unique within the process.
+std::uint64_t nextSerial()
+{
+  static std::atomic<std::uint64_t> counter{ 0 };
+  return ++counter;
+}
+
 } // namespace
 
 PointIndex::PointIndex(std::vector<Vec3> points, int dimension, int threads)
   : Dimension(dimension)
   , Points(std::move(points))
 {
-  static std::atomic<std::uint64_t> counter{ 0 };
-  Serial = ++counter;
+  Serial = nextSerial();
   if (dimension != 2 && dimension != 3)
   {
     throw std::invalid_argument("PointIndex: dimension must be 2 or 3, got " + std::to_string(dimension));
@@ -520,6 +485,74 @@ void collectLeaves(const Node* node, const double* q, double sqRadius, double bo
   dist[axis] = saved;
 }
 
+// collectLeaves for PointIndex::leavesInScaledBall: a node is entered when its box comes closer
+// to q than margin + sigma times the largest h_i below it. @p at is the node's place in the
+// depth-first table of NodeScales (its low child follows it, its high child follows the low
+// child's subtree).
+template <class Node, int D, class NodeScale>
+void collectScaledLeaves(const Node* node, const NodeScale* table, std::size_t at, const double* q, double margin,
+  double sigma, double boxSqDist, std::array<double, D>& dist, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out)
+{
+  namespace nf = nanoflann_internals;
+  if (nf::isLeaf(*node))
+  {
+    out.emplace_back(static_cast<std::uint32_t>(nf::leafBegin(*node)), static_cast<std::uint32_t>(nf::leafEnd(*node)));
+    return;
+  }
+  const auto reaches = [&](std::size_t child, double sqDist) {
+    const double r = margin + sigma * table[child].maxScale;
+    return sqDist < r * r;
+  };
+  const int axis = nf::axis(*node);
+  const double saved = dist[axis];
+  const std::size_t lowAt = at + 1;
+  const std::size_t highAt = lowAt + table[lowAt].nodes;
+  const double below = q[axis] - nf::low(*node);
+  const double first = below > 0.0 ? below * below : saved;
+  if (reaches(lowAt, boxSqDist - saved + first))
+  {
+    dist[axis] = first;
+    collectScaledLeaves<Node, D>(
+      nf::lowChild(*node), table, lowAt, q, margin, sigma, boxSqDist - saved + first, dist, out);
+  }
+  const double above = nf::high(*node) - q[axis];
+  const double second = above > 0.0 ? above * above : saved;
+  if (reaches(highAt, boxSqDist - saved + second))
+  {
+    dist[axis] = second;
+    collectScaledLeaves<Node, D>(
+      nf::highChild(*node), table, highAt, q, margin, sigma, boxSqDist - saved + second, dist, out);
+  }
+  dist[axis] = saved;
+}
+
+// Appends @p node's subtree to @p table in depth-first order (low child first) with the largest
+// of @p scales below each node; returns that largest scale.
+template <class Node, class NodeScale>
+double tabulateScales(const Node* node, const std::vector<double>& scales, std::vector<NodeScale>& table)
+{
+  namespace nf = nanoflann_internals;
+  const std::size_t at = table.size();
+  table.emplace_back();
+  double largest = 0.0;
+  if (nf::isLeaf(*node))
+  {
+    for (std::size_t i = nf::leafBegin(*node); i < nf::leafEnd(*node); ++i)
+    {
+      largest = std::max(largest, scales[i]);
+    }
+  }
+  else
+  {
+    // Two statements: the low child's subtree must be appended first.
+    const double low = tabulateScales(nf::lowChild(*node), scales, table);
+    largest = std::max(low, tabulateScales(nf::highChild(*node), scales, table));
+  }
+  table[at].maxScale = largest;
+  table[at].nodes = static_cast<std::uint32_t>(table.size() - at);
+  return largest;
+}
+
 } // namespace
 
 namespace
@@ -684,6 +717,80 @@ void PointIndex::leavesInBall(const Vec3& x, double sqRadius, LeafRanges& ranges
     {
       collectLeaves<nanoflann_internals::Node<Tree>, D>(
         nanoflann_internals::rootNode(tree), q.data(), sqRadius, boxSqDist, dist, ranges);
+    }
+  });
+}
+
+void PointIndex::setScales(const std::vector<double>& scales)
+{
+  Serial = nextSerial();
+  Scales.clear();
+  InverseSqScales.clear();
+  NodeScales.clear();
+  MinScale = MaxScale = 0.0;
+  if (scales.empty())
+  {
+    return;
+  }
+  if (scales.size() != Points.size() + Skipped)
+  {
+    throw std::invalid_argument("the scale array has " + std::to_string(scales.size()) + " values for " +
+      std::to_string(Points.size() + Skipped) + " points");
+  }
+  std::vector<double> ordered(Points.size());
+  for (std::size_t i = 0; i < Points.size(); ++i)
+  {
+    const double h = scales[OriginalIds[i]];
+    if (!(h > 0.0) || !std::isfinite(h) || !std::isfinite(1.0 / (h * h)) || !(1.0 / (h * h) > 0.0))
+    {
+      throw std::invalid_argument("the scale of point " + std::to_string(OriginalIds[i]) +
+        " must be a positive finite number whose inverse square is too, got " + std::to_string(h));
+    }
+    ordered[i] = h;
+  }
+  Scales = std::move(ordered);
+  InverseSqScales.resize(Scales.size());
+  for (std::size_t i = 0; i < Scales.size(); ++i)
+  {
+    InverseSqScales[i] = 1.0 / (Scales[i] * Scales[i]);
+  }
+  const auto [lo, hi] = std::minmax_element(Scales.begin(), Scales.end());
+  MinScale = *lo;
+  MaxScale = *hi;
+  if (!Points.empty())
+  {
+    Impl->visit([&](const auto& tree) {
+      using Node = nanoflann_internals::Node<std::decay_t<decltype(tree)>>;
+      tabulateScales<Node>(nanoflann_internals::rootNode(tree), Scales, NodeScales);
+    });
+  }
+}
+
+void PointIndex::leavesInScaledBall(const Vec3& x, double margin, double sigma, LeafRanges& ranges) const
+{
+  ranges.clear();
+  if (Points.empty() || NodeScales.empty())
+  {
+    return;
+  }
+  const Vec3 q = restrict(x);
+  Impl->visit([&](const auto& tree) {
+    using Tree = std::decay_t<decltype(tree)>;
+    const auto& box = nanoflann_internals::rootBox(tree);
+    constexpr int D = static_cast<int>(std::tuple_size<std::decay_t<decltype(box)>>::value);
+    std::array<double, D> dist{};
+    double boxSqDist = 0.0;
+    for (int d = 0; d < D; ++d)
+    {
+      const double gap = std::max({ box[d].low - q[d], q[d] - box[d].high, 0.0 });
+      dist[d] = gap * gap;
+      boxSqDist += dist[d];
+    }
+    const double r = margin + sigma * NodeScales.front().maxScale;
+    if (boxSqDist < r * r)
+    {
+      collectScaledLeaves<nanoflann_internals::Node<Tree>, D>(
+        nanoflann_internals::rootNode(tree), NodeScales.data(), 0, q.data(), margin, sigma, boxSqDist, dist, ranges);
     }
   });
 }

@@ -15,6 +15,7 @@
 
 #include "pss/Types.h"
 
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <utility>
@@ -79,7 +80,25 @@ public:
   std::uint32_t coordinateRank(std::size_t i) const { return CoordinateRanks[i]; }
 
   /// A number no other PointIndex of this process has: a safe cache key (addresses get reused).
+  /// setScales() gives the index a new one, since every cached neighbourhood changes.
   std::uint64_t serial() const { return Serial; }
+
+  /**
+   * Per-point scales: @p scales[i] is the Gaussian scale h_i of input point i (the constructor's
+   * input order; the entries of skipped points are not read). With scales, every weight is
+   * theta_i(y) = exp(-|y - p_i|^2 / h_i^2) (docs/paper.md, "A scale per point"). Throws
+   * std::invalid_argument when the size is not the input's or when a scale of an indexed point is
+   * not a positive finite number (naming the first such point). An empty vector removes them.
+   */
+  void setScales(const std::vector<double>& scales);
+  bool hasScales() const { return !Scales.empty(); }
+  /// h_i of indexed point @p i (with hasScales()).
+  double scale(std::size_t i) const { return Scales[i]; }
+  /// 1 / h_i^2 of indexed point @p i (with hasScales()).
+  double inverseSqScale(std::size_t i) const { return InverseSqScales[i]; }
+  /// The smallest and largest h_i (0 without scales).
+  double minScale() const { return MinScale; }
+  double maxScale() const { return MaxScale; }
 
   /// Drops z in 2D; leaves 3D points untouched.
   Vec3 restrict(const Vec3& x) const { return restrictTo(Dimension, x); }
@@ -117,10 +136,34 @@ public:
     }
   }
 
+  /**
+   * With scales: like forEachLeafInBall, ranges that hold every point p_i with
+   * |p_i - x| < margin + sigma h_i (the tree's nodes keep the largest h_i below them, so a region
+   * of small scales is not searched as widely as one of large scales).
+   */
+  template <class Visit>
+  void forEachLeafInScaledBall(const Vec3& x, double margin, double sigma, LeafRanges& scratch, Visit&& visit) const
+  {
+    leavesInScaledBall(x, margin, sigma, scratch);
+    for (const auto& r : scratch)
+    {
+      visit(r.first, r.second);
+    }
+  }
+
 private:
   struct Tree;
   /// The leaves for forEachLeafInBall, into @p ranges.
   void leavesInBall(const Vec3& x, double sqRadius, LeafRanges& ranges) const;
+  void leavesInScaledBall(const Vec3& x, double margin, double sigma, LeafRanges& ranges) const;
+  /// One entry per tree node in depth-first order (low child first): the largest h_i below it
+  /// and the number of nodes in its subtree (so a walk that skips a subtree knows where the next
+  /// one starts).
+  struct NodeScale
+  {
+    double maxScale = 0.0;
+    std::uint32_t nodes = 1;
+  };
   int Dimension;
   std::vector<Vec3> Points;
   std::vector<std::uint32_t> OriginalIds; // fits: at most 2^32 - 2 points
@@ -131,6 +174,11 @@ private:
   Vec3 Centroid = Vec3::Zero();
   Vec3 BoundsMin = Vec3::Zero();
   Vec3 BoundsMax = Vec3::Zero();
+  std::vector<double> Scales;          // leaf order
+  std::vector<double> InverseSqScales; // leaf order
+  std::vector<NodeScale> NodeScales;
+  double MinScale = 0.0;
+  double MaxScale = 0.0;
   Vec3 CompleteLo = Vec3::Constant(-std::numeric_limits<double>::infinity());
   Vec3 CompleteHi = Vec3::Constant(std::numeric_limits<double>::infinity());
   std::unique_ptr<Tree> Impl;
@@ -168,5 +216,21 @@ int detectDimension(const Vec3& lo, const Vec3& hi);
  * threads (0 = all cores); h is the same for every count.
  */
 double estimateScale(const PointIndex& index, int k = 10, double multiplier = 1.0, int threads = 1);
+
+/**
+ * A scale per point (for PointIndex::setScales; input order, NaN for skipped points): the distance
+ * from each point to its @p k-th nearest neighbour, replaced @p smoothing times by the median of
+ * the values over the point and its k nearest neighbours (so the scale follows the density but
+ * not the jitter of one neighbourhood), times @p multiplier. With even density every h_i is near
+ * estimateScale's h. Points whose neighbours all coincide with them take the smallest positive
+ * scale. Throws std::invalid_argument for k < 1, smoothing < 0, a multiplier that is not positive
+ * and finite, or fewer than k + 1 points. The same for every thread count.
+ */
+std::vector<double> estimateLocalScales(
+  const PointIndex& index, int k = 10, double multiplier = 1.0, int smoothing = 2, int threads = 1);
+
+/// How much the positive finite @p scales vary: their 90th percentile over their 10th (1 when
+/// there is none). The automatic scale mode compares it to a threshold (docs/paper.md).
+double scaleSpread(const std::vector<double>& scales);
 
 } // namespace pss

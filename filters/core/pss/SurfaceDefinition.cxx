@@ -74,4 +74,14 @@ Direction SurfaceDefinition::planeFit(const Vec3& x, Vec3& offset, DirectionMemo
   return fit.direction;
 }
 
+double SurfaceDefinition::scaleAt(const Vec3& x, Workspace& ws) const
+{
+  if (!Index.hasScales() || !isFinite(x))
+  {
+    return Params.h;
+  }
+  gatherNeighbourhood(Index, Params, x, ws.scale, ws);
+  return ws.scale.localScale;
+}
+
 } // namespace pss

@@ -119,7 +119,12 @@ public:
   const PointIndex& index() const { return Index; }
   const SurfaceParameters& parameters() const { return Params; }
   int dimension() const { return Index.dimension(); }
+  /// The scale parameter: h itself, or with a scale per point (PointIndex::hasScales) a typical
+  /// value (see SurfaceParameters::h); scaleAt() is the scale that holds at a point.
   double h() const { return Params.h; }
+  /// The scale at @p x: h, or with a scale per point the neighbours' scales averaged with the
+  /// normalized weights at x (Neighbourhood::localScale). What "units of h" mean at x.
+  double scaleAt(const Vec3& x, Workspace& ws) const;
 
 private:
   const PointIndex& Index;

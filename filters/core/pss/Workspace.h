@@ -42,6 +42,12 @@ struct CandidateCache
   double centerMinDist = 0.0;
   double radius = 0.0;
   Eigen::ArrayXd px, py, pz;
+  /// A scale per point (PointIndex::hasScales): each candidate's 1 / h_i^2 and h_i. The fetch
+  /// then holds every point that a query within margin of center can need, whatever its scale.
+  bool scaled = false;
+  Eigen::ArrayXd pk, ph;
+  double margin = 0.0;
+  double cutoffSq = 0.0;
   Eigen::Index count = 0;
   bool reusable = false; ///< the fetched ball is exact, so later queries may rely on it
   std::vector<std::uint64_t> ranks, rankScratch; ///< scratch of a fetch in coordinate order
@@ -59,6 +65,11 @@ struct CandidateCache
   void focus(const CandidateCache& wider, const Vec3& c, double reach, Eigen::ArrayXd& sq);
   /// Room for @p n candidates, keeping the first count.
   void reserve(Eigen::Index n);
+
+private:
+  void fetchScaled(const PointIndex& index, const Vec3& y, std::size_t nearest, PointIndex::LeafRanges& leaves,
+    double minMargin);
+  void focusScaled(const CandidateCache& wider, const Vec3& c, double reach, Eigen::ArrayXd& sq);
 };
 
 struct Workspace
@@ -73,6 +84,8 @@ struct Workspace
   /// For gathers nested in other evaluations that keep query or field in use (n_I's starting
   /// candidates, a plane fit's centroid for rules that fit no neighbourhood, cloud normals).
   Neighbourhood local;
+  /// The neighbourhood behind the last SurfaceDefinition::scaleAt (a scale per point only).
+  Neighbourhood scale;
 
   /// The last k-d tree query's candidates, and a subset of them for a smaller region (see
   /// focusNeighbourhoods): every gather scans the smaller one that covers it.

@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The automatic scales: one h for a cloud of even density (estimateScale), or one per point for a
+// cloud whose density varies (estimateLocalScales: depth-camera and LiDAR frames).
+#include "pss/PointIndex.h"
+
+#include "pss/Parallel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pss
+{
+
+double estimateScale(const PointIndex& index, int k, double multiplier, int threads)
+{
+  if (k < 1 || index.size() < static_cast<std::size_t>(k) + 1)
+  {
+    return 0.0;
+  }
+  const std::size_t samples = std::min<std::size_t>(index.size(), 2000);
+  // Each sample's distance goes to its own slot, so that the distances are kept in sample order
+  // (the order nth_element sees) whichever thread measured them.
+  std::vector<double> measured(samples, 0.0);
+  std::vector<std::uint8_t> kept(samples, 0);
+  parallelFor(samples, threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::pair<std::uint32_t, double>> found;
+    for (std::size_t s = begin; s < end; ++s)
+    {
+      const std::size_t i = s * index.size() / samples;
+      index.kNearest(index.point(i), static_cast<std::size_t>(k) + 1, found); // the point itself is first
+      if (found.size() == static_cast<std::size_t>(k) + 1)
+      {
+        measured[s] = std::sqrt(found.back().second);
+        kept[s] = 1;
+      }
+    }
+  });
+  std::vector<double> distances;
+  distances.reserve(samples);
+  for (std::size_t s = 0; s < samples; ++s)
+  {
+    if (kept[s])
+    {
+      distances.push_back(measured[s]);
+    }
+  }
+  if (distances.empty())
+  {
+    return 0.0;
+  }
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+  return multiplier * distances[distances.size() / 2];
+}
+
+std::vector<double> estimateLocalScales(const PointIndex& index, int k, double multiplier, int smoothing, int threads)
+{
+  if (k < 1 || smoothing < 0 || !(multiplier > 0.0) || !std::isfinite(multiplier))
+  {
+    throw std::invalid_argument("local scales need k >= 1, smoothing >= 0 and a positive finite multiplier");
+  }
+  const std::size_t n = index.size();
+  const auto kk = static_cast<std::size_t>(k);
+  if (n < kk + 1)
+  {
+    throw std::invalid_argument("local scales need at least k + 1 = " + std::to_string(kk + 1) +
+      " finite points, the cloud has " + std::to_string(n));
+  }
+  // Each point's k nearest others (the point itself comes first and is left out), and the raw
+  // scale: the distance to the k-th of them.
+  std::vector<std::uint32_t> neighbours(n * kk);
+  std::vector<double> raw(n);
+  parallelFor(n, threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::pair<std::uint32_t, double>> found;
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      index.kNearest(index.point(i), kk + 1, found);
+      for (std::size_t j = 0; j < kk; ++j)
+      {
+        neighbours[i * kk + j] = found[j + 1].first;
+      }
+      raw[i] = std::sqrt(found.back().second);
+    }
+  });
+  // Smoothing: the median over the point and its neighbours, repeated. A median, not a mean, so
+  // that a duplicate (distance 0) or a stray point does not pull its neighbours' scales along.
+  std::vector<double> next(n);
+  for (int pass = 0; pass < smoothing; ++pass)
+  {
+    parallelFor(n, threads, [&](std::size_t begin, std::size_t end) {
+      std::vector<double> values(kk + 1);
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        values[0] = raw[i];
+        for (std::size_t j = 0; j < kk; ++j)
+        {
+          values[j + 1] = raw[neighbours[i * kk + j]];
+        }
+        std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(kk / 2), values.end());
+        next[i] = values[kk / 2];
+      }
+    });
+    raw.swap(next);
+  }
+  // A point whose k neighbours all coincide with it has no scale of its own: it takes the
+  // smallest positive one (a cloud of one repeated point has none, which setScales refuses).
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const double r : raw)
+  {
+    if (r > 0.0)
+    {
+      smallest = std::min(smallest, r);
+    }
+  }
+  std::vector<double> out(n + index.skippedCount(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    out[index.originalId(i)] = multiplier * (raw[i] > 0.0 ? raw[i] : smallest);
+  }
+  return out;
+}
+
+double scaleSpread(const std::vector<double>& scales)
+{
+  std::vector<double> finite;
+  finite.reserve(scales.size());
+  for (const double s : scales)
+  {
+    if (std::isfinite(s) && s > 0.0)
+    {
+      finite.push_back(s);
+    }
+  }
+  if (finite.empty())
+  {
+    return 1.0;
+  }
+  const auto at = [&](double q) {
+    auto it = finite.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(finite.size() - 1));
+    std::nth_element(finite.begin(), it, finite.end());
+    return *it;
+  };
+  const double low = at(0.1);
+  const double high = at(0.9);
+  return high / low;
+}
+
+} // namespace pss
