@@ -45,6 +45,7 @@
 #include "pss/VariantCatalog.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -130,10 +131,37 @@ void AddSurfaceOptions(OptionTable& t, vtkPointSetSurface* s)
     s->SetScaleFactor(pss_cli::ToDouble("h", v));
     s->AutomaticScaleOff();
   });
+  t.Value("scale", "automatic|one|per-point|array",
+    "automatic h: one h, a scale per point h_i from each point's neighbours, or the point array of "
+    "--scale-array; automatic: per point where the density varies more than --scale-spread, else one h "
+    "(default automatic)",
+    [s](const std::string& v) {
+      s->SetScaleMode(pss_cli::ToChoice("scale", v, { "automatic", "one", "per-point", "array" }));
+    });
+  t.Value("scale-array", "NAME", "--scale array: the point array of h_i (default Scale)",
+    [s](const std::string& v) { s->SetScaleArrayName(v.c_str()); });
+  t.Value("scale-spread", "R",
+    "--scale automatic: a scale per point when the 90th percentile of the points' scales exceeds R times "
+    "their 10th (default 2)",
+    [s](const std::string& v) {
+      const double r = pss_cli::ToDouble("scale-spread", v);
+      if (!(r >= 1.0) || !std::isfinite(r))
+      {
+        throw pss_cli::UsageError{ "--scale-spread expects a ratio >= 1, got '" + v + "'" };
+      }
+      s->SetScaleSpreadThreshold(r);
+    });
   t.Value("scale-neighbors", "K", "automatic h: k of the k-th nearest neighbour distance (default 10)",
     [s](const std::string& v) { s->SetScaleNeighbors(pss_cli::ToInt("scale-neighbors", v)); });
-  t.Value("scale-multiplier", "M", "automatic h: multiplier of the median k-NN distance (default 1)",
-    [s](const std::string& v) { s->SetScaleMultiplier(pss_cli::ToDouble("scale-multiplier", v)); });
+  t.Value("scale-multiplier", "M", "automatic h: multiplier of the k-NN distances (default 1)",
+    [s](const std::string& v) {
+      const double m = pss_cli::ToDouble("scale-multiplier", v);
+      if (!(m > 0.0) || !std::isfinite(m))
+      {
+        throw pss_cli::UsageError{ "--scale-multiplier expects a positive number, got '" + v + "'" };
+      }
+      s->SetScaleMultiplier(m);
+    });
   t.Value("dimension", "D", "auto | 2 | 3 (default auto: 2 when all z are equal)", [s](const std::string& v) {
     const int d = pss_cli::ToChoice("dimension", v, { "auto", "1", "2", "3" });
     s->SetDimension(d == 0 ? vtkPointSetSurface::DIMENSION_AUTO : d);
@@ -323,9 +351,14 @@ vtkSmartPointer<vtkPointSet> PrepareCloud(Run& run, const std::string& path, vtk
   }
   if (run.verbose)
   {
-    std::fprintf(stderr, "pss: %lld points, dimension %d, h = %.6g, %lld skipped (NaN/Inf)\n",
+    std::fprintf(stderr, "pss: %lld points, dimension %d, h = %.6g%s, %lld skipped (NaN/Inf)\n",
       static_cast<long long>(cloud->GetNumberOfPoints()), surface->GetEffectiveDimension(), surface->GetEffectiveScale(),
+      surface->GetUsesPointScales() ? " (median of a scale per point)" : "",
       static_cast<long long>(surface->GetNumberOfSkippedPoints()));
+    if (surface->GetScaleSpread() > 0.0)
+    {
+      std::fprintf(stderr, "pss: the points' scales spread %.3g (90th / 10th percentile)\n", surface->GetScaleSpread());
+    }
   }
   return cloud;
 }

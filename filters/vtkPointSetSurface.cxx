@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPointSetSurface.h"
 
+#include "vtkDataArray.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkSMPTools.h"
@@ -12,6 +14,7 @@
 #include "pss/PointIndex.h"
 #include "pss/SurfaceDefinition.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -22,8 +25,15 @@
 
 vtkStandardNewMacro(vtkPointSetSurface);
 
-vtkPointSetSurface::vtkPointSetSurface() = default;
-vtkPointSetSurface::~vtkPointSetSurface() = default;
+vtkPointSetSurface::vtkPointSetSurface()
+{
+  this->SetScaleArrayName("Scale");
+}
+
+vtkPointSetSurface::~vtkPointSetSurface()
+{
+  this->SetScaleArrayName(nullptr);
+}
 
 const char* vtkPointSetSurface::UseThreadedBackend()
 {
@@ -79,6 +89,22 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud, bool coordinateOrder)
   // The index is built, and h estimated, on the threads the application gave vtkSMPTools (the
   // result is the same for every count).
   const int threads = pss_vtk::CoreThreads();
+  std::vector<double> arrayScales;
+  if (this->AutomaticScale && this->ScaleMode == SCALE_FROM_ARRAY)
+  {
+    const char* name = this->ScaleArrayName ? this->ScaleArrayName : "";
+    vtkDataArray* scales = cloud->GetPointData()->GetArray(name);
+    if (!scales || scales->GetNumberOfComponents() != 1)
+    {
+      return this->Fail(std::string("ScaleMode is FromArray but the cloud has no one-component point array named \"") +
+        name + "\"");
+    }
+    arrayScales.resize(static_cast<std::size_t>(scales->GetNumberOfTuples()));
+    for (vtkIdType i = 0; i < scales->GetNumberOfTuples(); ++i)
+    {
+      arrayScales[static_cast<std::size_t>(i)] = scales->GetComponent(i, 0);
+    }
+  }
   std::vector<pss::Vec3> points = pss_vtk::ToVectors(cloud->GetPoints(), threads);
   const int dimension =
     this->Dimension == DIMENSION_AUTO ? pss::detectDimension(points, threads) : this->Dimension;
@@ -92,7 +118,7 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud, bool coordinateOrder)
   {
     return this->Fail(std::string("invalid surface parameters: ") + e.what());
   }
-  if (!this->Build(std::move(index), this->AutomaticScale ? 0.0 : this->ScaleFactor))
+  if (!this->Build(std::move(index), this->AutomaticScale ? 0.0 : this->ScaleFactor, arrayScales))
   {
     return false;
   }
@@ -111,6 +137,12 @@ bool vtkPointSetSurface::PreparePiece(
   if (!this->CheckParameters(dimension, h))
   {
     return this->Fail(this->LastError);
+  }
+  if (this->AutomaticScale && (this->ScaleMode == SCALE_PER_POINT || this->ScaleMode == SCALE_FROM_ARRAY))
+  {
+    // The ghost margins would have to follow the largest scale a rank holds: not there yet.
+    return this->Fail("a scale per point (ScaleMode PerPoint or FromArray) is not supported in a distributed run "
+                      "yet; use ScaleMode One or Automatic (one h over the ranks) or a single process");
   }
   std::unique_ptr<pss::PointIndex> index;
   try
@@ -175,9 +207,43 @@ pss::SurfaceParameters vtkPointSetSurface::Parameters(double h) const
   return params;
 }
 
-bool vtkPointSetSurface::Build(std::unique_ptr<pss::PointIndex> index, double h)
+double vtkPointSetSurface::ChooseScales(pss::PointIndex& index, const std::vector<double>& arrayScales)
+{
+  const int threads = pss_vtk::CoreThreads();
+  std::vector<double> scales;
+  if (this->ScaleMode == SCALE_FROM_ARRAY)
+  {
+    scales = arrayScales;
+  }
+  else if (this->ScaleMode != SCALE_ONE && index.size() > static_cast<std::size_t>(this->ScaleNeighbors))
+  {
+    scales = pss::estimateLocalScales(index, this->ScaleNeighbors, this->ScaleMultiplier, 2, threads);
+  }
+  this->ScaleSpread = scales.empty() ? 0.0 : pss::scaleSpread(scales);
+  if (this->ScaleMode == SCALE_AUTOMATIC && !(this->ScaleSpread > this->ScaleSpreadThreshold))
+  {
+    scales.clear(); // even density: one h, exactly as with SCALE_ONE
+  }
+  if (scales.empty())
+  {
+    return pss::estimateScale(index, this->ScaleNeighbors, this->ScaleMultiplier, threads);
+  }
+  index.setScales(scales); // throws, naming the point, for a bad value
+  this->UsesPointScales = true;
+  std::vector<double> own(index.size());
+  for (std::size_t i = 0; i < own.size(); ++i)
+  {
+    own[i] = index.scale(i);
+  }
+  std::nth_element(own.begin(), own.begin() + static_cast<std::ptrdiff_t>(own.size() / 2), own.end());
+  return own[own.size() / 2];
+}
+
+bool vtkPointSetSurface::Build(std::unique_ptr<pss::PointIndex> index, double h, const std::vector<double>& arrayScales)
 {
   this->SkippedPoints = static_cast<vtkIdType>(index->skippedCount());
+  this->UsesPointScales = false;
+  this->ScaleSpread = 0.0;
   if (index->empty())
   {
     return this->Fail("the point cloud has no point with finite coordinates");
@@ -187,7 +253,9 @@ bool vtkPointSetSurface::Build(std::unique_ptr<pss::PointIndex> index, double h)
     pss::SurfaceParameters params = this->Parameters(h);
     if (this->AutomaticScale && !(h > 0.0))
     {
-      params.h = pss::estimateScale(*index, this->ScaleNeighbors, this->ScaleMultiplier, pss_vtk::CoreThreads());
+      params.h = this->ScaleMode == SCALE_ONE
+        ? pss::estimateScale(*index, this->ScaleNeighbors, this->ScaleMultiplier, pss_vtk::CoreThreads())
+        : this->ChooseScales(*index, arrayScales);
       if (!(params.h > 0.0))
       {
         std::ostringstream msg;
@@ -217,6 +285,11 @@ void vtkPointSetSurface::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutomaticScale: " << (this->AutomaticScale ? "On" : "Off") << "\n";
   os << indent << "ScaleNeighbors: " << this->ScaleNeighbors << "\n";
   os << indent << "ScaleMultiplier: " << this->ScaleMultiplier << "\n";
+  os << indent << "ScaleMode: " << this->ScaleMode << "\n";
+  os << indent << "ScaleSpreadThreshold: " << this->ScaleSpreadThreshold << "\n";
+  os << indent << "ScaleArrayName: " << (this->ScaleArrayName ? this->ScaleArrayName : "(none)") << "\n";
+  os << indent << "UsesPointScales: " << (this->UsesPointScales ? "On" : "Off") << "\n";
+  os << indent << "ScaleSpread: " << this->ScaleSpread << "\n";
   os << indent << "Dimension: " << this->Dimension << "\n";
   os << indent << "KernelCutoff: " << this->KernelCutoff << "\n";
   os << indent << "QuadratureOrder: " << this->QuadratureOrder << "\n";

@@ -178,29 +178,34 @@ void CandidateCache::fetchScaled(
   const bool ranked = index.coordinateOrder();
   std::size_t kept = 0;
   Eigen::Index n = 0;
+  // As in fetch(): every point of a leaf is written, and the count moves on for those kept.
   index.forEachLeafInScaledBall(y, margin, sigma, leaves, [&](std::uint32_t begin, std::uint32_t end) {
+    if (ranked)
+    {
+      ranks.resize(std::max<std::size_t>(kept + (end - begin), ranks.size()));
+    }
+    else
+    {
+      reserve(n + (end - begin));
+    }
     for (std::uint32_t i = begin; i < end; ++i)
     {
       const double r = margin + sigma * index.scale(i);
-      if (!((index.point(i) - y).squaredNorm() < r * r))
-      {
-        continue;
-      }
+      const bool inside = (index.point(i) - y).squaredNorm() < r * r;
       if (ranked)
       {
-        ranks.resize(std::max<std::size_t>(kept + 1, ranks.size()));
-        ranks[kept++] = std::uint64_t(index.coordinateRank(i)) << 32 | i;
+        ranks[kept] = std::uint64_t(index.coordinateRank(i)) << 32 | i;
+        kept += inside ? 1 : 0;
       }
       else
       {
-        reserve(n + 1);
         const Vec3& p = index.point(i);
         px[n] = p.x();
         py[n] = p.y();
         pz[n] = p.z();
         pk[n] = index.inverseSqScale(i);
         ph[n] = index.scale(i);
-        ++n;
+        n += inside ? 1 : 0;
       }
     }
   });

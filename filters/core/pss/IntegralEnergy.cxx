@@ -219,7 +219,7 @@ double IntegralEnergy::windowScale(const Vec3& x, Vec3& gradient, Workspace& ws)
     return Params.h;
   }
   gatherNeighbourhood(Index, Params, x, ws.scale, ws);
-  gradient = ws.scale.localScaleGradient;
+  gradient = localScaleGradient(ws.scale);
   return ws.scale.localScale;
 }
 

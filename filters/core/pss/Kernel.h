@@ -87,9 +87,7 @@ struct Neighbourhood
   /// itself without a scale per point). What "units of h" mean at y: tolerances, steps, the
   /// domain's distances, e_I's window.
   double localScale = 0.0;
-  /// The gradient of localScale in y (zero without a scale per point):
-  /// 2 sum_i theta_N k_i (h_i - localScale) r_i.
-  Vec3 localScaleGradient = Vec3::Zero();
+  Eigen::ArrayXd pointScale;      ///< scaled: h_i per neighbour
   /// What the contents were gathered for (index serial, h, cutoff; 0 = nothing yet), so that a
   /// second gather of the same query is free.
   std::uint64_t indexSerial = 0;
@@ -159,6 +157,10 @@ void prefetchNeighbourhoods(
  */
 void focusNeighbourhoods(
   const PointIndex& index, const SurfaceParameters& params, const Vec3& center, double reach, Workspace& ws);
+
+/// The gradient in y of Neighbourhood::localScale: 2 sum_i theta_N k_i (h_i - localScale) r_i
+/// (zero without a scale per point).
+Vec3 localScaleGradient(const Neighbourhood& nb);
 
 /// c(y) - y, where c(y) = sum_i theta_N(y, p_i) p_i is the weighted centre of mass.
 Vec3 centroidOffset(const Neighbourhood& nb);

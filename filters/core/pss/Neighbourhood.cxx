@@ -54,7 +54,7 @@ void Neighbourhood::resize(Eigen::Index n)
   if (dx.size() < needed)
   {
     const Eigen::Index capacity = std::max<Eigen::Index>(needed, 2 * dx.size());
-    for (Eigen::ArrayXd* a : { &dx, &dy, &dz, &sqDist, &weight, &inverseSqScale })
+    for (Eigen::ArrayXd* a : { &dx, &dy, &dz, &sqDist, &weight, &inverseSqScale, &pointScale })
     {
       a->resize(capacity);
     }
@@ -112,25 +112,29 @@ void gatherScaled(const PointIndex& index, const SurfaceParameters& params, cons
 {
   const Eigen::Index m = cache.count;
   const auto sq = cache.squaredDistances(nb.origin, ws.candidateSq);
-  const auto scaledSq = (sq * cache.pk.head(m)).eval();
+  if (ws.scaledSq.size() < m)
+  {
+    ws.scaledSq.resize(m);
+  }
+  auto scaledSq = ws.scaledSq.head(m);
+  scaledSq = sq * cache.pk.head(m);
   const double minScaled = scaledSq.minCoeff();
   const double bound = minScaled + params.cutoff * params.cutoff;
   nb.resize(m);
+  // Every candidate is written, and the count moves on only for those kept (no branch to
+  // mispredict); the exponents go to weight, for expNonPositive below.
+  const Vec3& y = nb.origin;
   Eigen::Index n = 0;
-  double minSq = std::numeric_limits<double>::infinity();
   for (Eigen::Index i = 0; i < m; ++i)
   {
-    if (scaledSq[i] < bound)
-    {
-      nb.dx[n] = cache.px[i] - nb.origin.x();
-      nb.dy[n] = cache.py[i] - nb.origin.y();
-      nb.dz[n] = cache.pz[i] - nb.origin.z();
-      nb.sqDist[n] = sq[i];
-      nb.inverseSqScale[n] = cache.pk[i];
-      nb.weight[n] = minScaled - scaledSq[i]; // the exponent, for expNonPositive below
-      minSq = std::min(minSq, sq[i]);
-      ++n;
-    }
+    nb.dx[n] = cache.px[i] - y.x();
+    nb.dy[n] = cache.py[i] - y.y();
+    nb.dz[n] = cache.pz[i] - y.z();
+    nb.sqDist[n] = sq[i];
+    nb.inverseSqScale[n] = cache.pk[i];
+    nb.pointScale[n] = cache.ph[i];
+    nb.weight[n] = minScaled - scaledSq[i];
+    n += scaledSq[i] < bound ? 1 : 0;
   }
   // The last vector is padded with neighbours of weight 0 at offset 0, which add nothing.
   const Eigen::Index padded = (n + SimdLanes - 1) / SimdLanes * SimdLanes;
@@ -138,34 +142,17 @@ void gatherScaled(const PointIndex& index, const SurfaceParameters& params, cons
   {
     nb.dx[i] = nb.dy[i] = nb.dz[i] = 0.0;
     nb.sqDist[i] = std::numeric_limits<double>::infinity();
-    nb.inverseSqScale[i] = 0.0;
+    nb.inverseSqScale[i] = nb.pointScale[i] = 0.0;
     nb.weight[i] = -std::numeric_limits<double>::infinity();
   }
   expNonPositive(nb.weight.data(), nb.weight.data(), padded);
   nb.count = n;
-  nb.minSqDist = minSq;
+  nb.minSqDist = nb.d2().minCoeff();
   nb.minScaledSqDist = minScaled;
   const auto w = nb.w();
   nb.weightSum = w.sum();
   nb.moment = Vec3((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum());
-  // Each neighbour's h_i from its 1 / h_i^2 would cost a square root: the scales are kept.
-  double scaleSum = 0.0;
-  Vec3 kr = Vec3::Zero();  // sum w_i k_i r_i
-  Vec3 khr = Vec3::Zero(); // sum w_i k_i h_i r_i
-  for (Eigen::Index i = 0, j = 0; i < m; ++i)
-  {
-    if (scaledSq[i] < bound)
-    {
-      const double w = nb.weight[j];
-      const Vec3 wkr = (w * nb.inverseSqScale[j]) * nb.offset(j);
-      scaleSum += w * cache.ph[i];
-      kr += wkr;
-      khr += cache.ph[i] * wkr;
-      ++j;
-    }
-  }
-  nb.localScale = scaleSum / nb.weightSum;
-  nb.localScaleGradient = 2.0 * (khr - nb.localScale * kr) / nb.weightSum;
+  nb.localScale = (w * nb.pointScale.head(n)).sum() / nb.weightSum;
   noteReach(index, nb.origin, scaledReachSq(index, nb, params.cutoff), ws);
 }
 
@@ -188,7 +175,6 @@ void gatherNeighbourhood(
   nb.invH2 = 1.0 / (params.h * params.h);
   nb.scaled = index.hasScales();
   nb.localScale = params.h;
-  nb.localScaleGradient = Vec3::Zero();
   // Either cache holds, in index order, every point the neighbourhood can need, so which one
   // serves the query does not change a bit of the result.
   const bool focused = ws.focused.covers(index, params, nb.origin);
@@ -233,6 +219,16 @@ void gatherNeighbourhood(
   nb.h = params.h;
   nb.cutoff = params.cutoff;
 }
+Vec3 localScaleGradient(const Neighbourhood& nb)
+{
+  if (!nb.scaled)
+  {
+    return Vec3::Zero();
+  }
+  const auto wk = nb.w() * nb.k() * (nb.pointScale.head(nb.count) - nb.localScale);
+  return 2.0 * Vec3((wk * nb.x()).sum(), (wk * nb.y()).sum(), (wk * nb.z()).sum()) / nb.weightSum;
+}
+
 Vec3 centroidOffset(const Neighbourhood& nb)
 {
   return nb.moment / nb.weightSum;

@@ -80,6 +80,13 @@ double SurfaceDefinition::scaleAt(const Vec3& x, Workspace& ws) const
   {
     return Params.h;
   }
+  // Most callers have just fitted n at x: that neighbourhood's scale is the one asked for.
+  const Neighbourhood& fitted = ws.query;
+  if (fitted.indexSerial == Index.serial() && fitted.h == Params.h && fitted.cutoff == Params.cutoff &&
+    fitted.origin == Index.restrict(x))
+  {
+    return fitted.localScale;
+  }
   gatherNeighbourhood(Index, Params, x, ws.scale, ws);
   return ws.scale.localScale;
 }

@@ -94,6 +94,7 @@ struct Workspace
   /// Scratch: candidates' squared distances (gather, focus) and a tree query's leaf ranges.
   Eigen::ArrayXd candidateSq;
   Eigen::ArrayXd focusSq;
+  Eigen::ArrayXd scaledSq; ///< candidates' |p - y|^2 / h_i^2 (a scale per point)
   PointIndex::LeafRanges leaves;
   /// The delta lattice's nodes computed so far (SurfaceParameters::deltaLattice > 0).
   LatticeCache lattice;
