@@ -131,18 +131,18 @@ void AddSurfaceOptions(OptionTable& t, vtkPointSetSurface* s)
     s->SetScaleFactor(pss_cli::ToDouble("h", v));
     s->AutomaticScaleOff();
   });
-  t.Value("scale", "automatic|one|per-point|array",
-    "automatic h: one h, a scale per point h_i from each point's neighbours, or the point array of "
-    "--scale-array; automatic: per point where the density varies more than --scale-spread, else one h "
-    "(default automatic)",
+  t.Value("point-scales", "automatic|off|estimated|array",
+    "automatic h: one h (off), a scale per point h_i from each point's neighbours (estimated) or from the "
+    "point array of --scale-array; automatic: per point for a sensor frame (organized or with a viewpoint) "
+    "or where the density varies more than --scale-spread, else one h (default automatic)",
     [s](const std::string& v) {
-      s->SetScaleMode(pss_cli::ToChoice("scale", v, { "automatic", "one", "per-point", "array" }));
+      s->SetPointScales(pss_cli::ToChoice("point-scales", v, { "automatic", "off", "estimated", "array" }));
     });
-  t.Value("scale-array", "NAME", "--scale array: the point array of h_i (default Scale)",
+  t.Value("scale-array", "NAME", "--point-scales array: the point array of h_i (default Scale)",
     [s](const std::string& v) { s->SetScaleArrayName(v.c_str()); });
   t.Value("scale-spread", "R",
-    "--scale automatic: a scale per point when the 90th percentile of the points' scales exceeds R times "
-    "their 10th (default 2)",
+    "--point-scales automatic: a scale per point when the 90th percentile of the points' scales exceeds R times "
+    "their 10th (default 3)",
     [s](const std::string& v) {
       const double r = pss_cli::ToDouble("scale-spread", v);
       if (!(r >= 1.0) || !std::isfinite(r))

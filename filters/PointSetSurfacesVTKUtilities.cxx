@@ -46,6 +46,30 @@ std::vector<pss::Vec3> ToVectors(vtkPoints* points, int threads)
   return out;
 }
 
+vtkIdType PointAt(vtkPoints* points, const double x[3])
+{
+  if (!points || points->GetNumberOfPoints() == 0)
+  {
+    return -1;
+  }
+  double bounds[6];
+  points->GetBounds(bounds);
+  const double diagonalSq = (bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]);
+  const double toleranceSq = 1e-24 * diagonalSq;
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    const double dSq = (p[0] - x[0]) * (p[0] - x[0]) + (p[1] - x[1]) * (p[1] - x[1]) + (p[2] - x[2]) * (p[2] - x[2]);
+    if (dSq <= toleranceSq)
+    {
+      return i;
+    }
+  }
+  return -1;
+}
+
 pss::Orientation OrientationFor(const double* viewpoint, const pss::Vec3& centroid)
 {
   return viewpoint ? pss::Orientation::toward(pss::Vec3(viewpoint[0], viewpoint[1], viewpoint[2]))

@@ -42,6 +42,9 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, vtkIdType tuples, int compone
   return array;
 }
 
+/// The first of @p points at @p x (within 1e-12 of the points' bounding-box diagonal), or -1.
+vtkIdType PointAt(vtkPoints* points, const double x[3]);
+
 /// n's orientation: toward @p viewpoint when it is given (a sensor's position, three values),
 /// else away from @p centroid (the rule for closed shapes).
 pss::Orientation OrientationFor(const double* viewpoint, const pss::Vec3& centroid);

@@ -2,6 +2,7 @@
 #include "vtkPointSetSurface.h"
 
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
@@ -59,6 +60,27 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
   return this->Prepare(cloud, false);
 }
 
+namespace
+{
+// A depth or LiDAR frame says so: an organized image (GridDimensions, both sides > 1) or the
+// sensor's position (Viewpoint), as vtkPCDReader and the depth-camera source write them.
+bool IsSensorFrame(vtkPointSet* cloud)
+{
+  vtkFieldData* field = cloud->GetFieldData();
+  if (field->GetArray("Viewpoint"))
+  {
+    return true;
+  }
+  vtkDataArray* grid = field->GetArray("GridDimensions");
+  if (!grid || grid->GetNumberOfValues() < 2)
+  {
+    return false;
+  }
+  const int components = grid->GetNumberOfComponents();
+  return grid->GetComponent(0, 0) > 1 && grid->GetComponent(1 / components, 1 % components) > 1;
+}
+}
+
 bool vtkPointSetSurface::Prepare(vtkPointSet* cloud, bool coordinateOrder)
 {
   vtkMTimeType cloudTime = 0;
@@ -90,13 +112,13 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud, bool coordinateOrder)
   // result is the same for every count).
   const int threads = pss_vtk::CoreThreads();
   std::vector<double> arrayScales;
-  if (this->AutomaticScale && this->ScaleMode == SCALE_FROM_ARRAY)
+  if (this->AutomaticScale && this->PointScales == POINT_SCALES_FROM_ARRAY)
   {
     const char* name = this->ScaleArrayName ? this->ScaleArrayName : "";
     vtkDataArray* scales = cloud->GetPointData()->GetArray(name);
     if (!scales || scales->GetNumberOfComponents() != 1)
     {
-      return this->Fail(std::string("ScaleMode is FromArray but the cloud has no one-component point array named \"") +
+      return this->Fail(std::string("PointScales is FromArray but the cloud has no one-component point array named \"") +
         name + "\"");
     }
     arrayScales.resize(static_cast<std::size_t>(scales->GetNumberOfTuples()));
@@ -105,6 +127,7 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud, bool coordinateOrder)
       arrayScales[static_cast<std::size_t>(i)] = scales->GetComponent(i, 0);
     }
   }
+  this->SensorFrame = IsSensorFrame(cloud);
   std::vector<pss::Vec3> points = pss_vtk::ToVectors(cloud->GetPoints(), threads);
   const int dimension =
     this->Dimension == DIMENSION_AUTO ? pss::detectDimension(points, threads) : this->Dimension;
@@ -133,16 +156,17 @@ bool vtkPointSetSurface::PreparePiece(
   const std::vector<double>& points, int dimension, const double lo[3], const double hi[3], double h)
 {
   this->PreparedCloud = nullptr;
+  this->SensorFrame = false;
   // The parameters first, so that every rank fails alike whatever its piece holds.
   if (!this->CheckParameters(dimension, h))
   {
     return this->Fail(this->LastError);
   }
-  if (this->AutomaticScale && (this->ScaleMode == SCALE_PER_POINT || this->ScaleMode == SCALE_FROM_ARRAY))
+  if (this->AutomaticScale && (this->PointScales == POINT_SCALES_ESTIMATED || this->PointScales == POINT_SCALES_FROM_ARRAY))
   {
     // The ghost margins would have to follow the largest scale a rank holds: not there yet.
-    return this->Fail("a scale per point (ScaleMode PerPoint or FromArray) is not supported in a distributed run "
-                      "yet; use ScaleMode One or Automatic (one h over the ranks) or a single process");
+    return this->Fail("a scale per point (PointScales Estimated or FromArray) is not supported in a distributed run "
+                      "yet; use PointScales Off or Automatic (one h over the ranks) or a single process");
   }
   std::unique_ptr<pss::PointIndex> index;
   try
@@ -211,18 +235,18 @@ double vtkPointSetSurface::ChooseScales(pss::PointIndex& index, const std::vecto
 {
   const int threads = pss_vtk::CoreThreads();
   std::vector<double> scales;
-  if (this->ScaleMode == SCALE_FROM_ARRAY)
+  if (this->PointScales == POINT_SCALES_FROM_ARRAY)
   {
     scales = arrayScales;
   }
-  else if (this->ScaleMode != SCALE_ONE && index.size() > static_cast<std::size_t>(this->ScaleNeighbors))
+  else if (this->PointScales != POINT_SCALES_OFF && index.size() > static_cast<std::size_t>(this->ScaleNeighbors))
   {
     scales = pss::estimateLocalScales(index, this->ScaleNeighbors, this->ScaleMultiplier, 2, threads);
   }
   this->ScaleSpread = scales.empty() ? 0.0 : pss::scaleSpread(scales);
-  if (this->ScaleMode == SCALE_AUTOMATIC && !(this->ScaleSpread > this->ScaleSpreadThreshold))
+  if (this->PointScales == POINT_SCALES_AUTOMATIC && !this->SensorFrame && !(this->ScaleSpread > this->ScaleSpreadThreshold))
   {
-    scales.clear(); // even density: one h, exactly as with SCALE_ONE
+    scales.clear(); // even density: one h, exactly as with POINT_SCALES_OFF
   }
   if (scales.empty())
   {
@@ -253,7 +277,7 @@ bool vtkPointSetSurface::Build(std::unique_ptr<pss::PointIndex> index, double h,
     pss::SurfaceParameters params = this->Parameters(h);
     if (this->AutomaticScale && !(h > 0.0))
     {
-      params.h = this->ScaleMode == SCALE_ONE
+      params.h = this->PointScales == POINT_SCALES_OFF
         ? pss::estimateScale(*index, this->ScaleNeighbors, this->ScaleMultiplier, pss_vtk::CoreThreads())
         : this->ChooseScales(*index, arrayScales);
       if (!(params.h > 0.0))
@@ -285,11 +309,12 @@ void vtkPointSetSurface::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutomaticScale: " << (this->AutomaticScale ? "On" : "Off") << "\n";
   os << indent << "ScaleNeighbors: " << this->ScaleNeighbors << "\n";
   os << indent << "ScaleMultiplier: " << this->ScaleMultiplier << "\n";
-  os << indent << "ScaleMode: " << this->ScaleMode << "\n";
+  os << indent << "PointScales: " << this->PointScales << "\n";
   os << indent << "ScaleSpreadThreshold: " << this->ScaleSpreadThreshold << "\n";
   os << indent << "ScaleArrayName: " << (this->ScaleArrayName ? this->ScaleArrayName : "(none)") << "\n";
   os << indent << "UsesPointScales: " << (this->UsesPointScales ? "On" : "Off") << "\n";
   os << indent << "ScaleSpread: " << this->ScaleSpread << "\n";
+  os << indent << "SensorFrame: " << (this->SensorFrame ? "On" : "Off") << "\n";
   os << indent << "Dimension: " << this->Dimension << "\n";
   os << indent << "KernelCutoff: " << this->KernelCutoff << "\n";
   os << indent << "QuadratureOrder: " << this->QuadratureOrder << "\n";

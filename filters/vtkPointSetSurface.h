@@ -18,15 +18,16 @@
  * many threads as vtkSMPTools gives (one with its Sequential backend); they are the same, bit for
  * bit, for every thread count.
  *
- * Scale: with AutomaticScale on (the default), ScaleMode chooses between one h for the whole cloud,
+ * Scale: with AutomaticScale on (the default), PointScales chooses between one h for the whole cloud,
  * ScaleMultiplier times the median distance from a point to its ScaleNeighbors-th nearest
  * neighbour (defaults 1 and 10: about five spacings along a curve, two on a surface), and a scale
  * per point h_i (weights exp(-|x - p_i|^2 / h_i^2): docs/paper.md, "A scale per point"), either
  * from the data (each point's ScaleNeighbors-th neighbour distance, median-smoothed over its
  * neighbours, times ScaleMultiplier) or from a point array (ScaleArrayName). The default,
- * SCALE_AUTOMATIC, takes a scale per point only where the data call for it: when the 90th
- * percentile of the data's per-point scales exceeds ScaleSpreadThreshold times their 10th (depth
- * and LiDAR frames), else one h, as before. With AutomaticScale off, ScaleFactor is h and must be
+ * POINT_SCALES_AUTOMATIC, takes a scale per point only where the data call for it: for a sensor
+ * frame (field data `GridDimensions` of an organized image, or a `Viewpoint`: what vtkPCDReader
+ * and the depth-camera scene write) or when the 90th percentile of the data's per-point scales
+ * exceeds ScaleSpreadThreshold times their 10th; else one h, exactly as with POINT_SCALES_OFF. With AutomaticScale off, ScaleFactor is h and must be
  * > 0.
  *
  * @sa vtkPointSetSurfaceProjection vtkPointSetSurfaceImplicitFunction
@@ -70,12 +71,12 @@ public:
   };
 
   /// How h is chosen when AutomaticScale is on (see the class description).
-  enum ScaleModeType
+  enum PointScalesType
   {
-    SCALE_AUTOMATIC = 0, ///< per point where the density varies (ScaleSpreadThreshold), else one h
-    SCALE_ONE = 1,       ///< one h for the whole cloud
-    SCALE_PER_POINT = 2, ///< h_i from each point's neighbours
-    SCALE_FROM_ARRAY = 3 ///< h_i from the point array ScaleArrayName
+    POINT_SCALES_AUTOMATIC = 0, ///< per point where the density varies (ScaleSpreadThreshold), else one h
+    POINT_SCALES_OFF = 1,       ///< one h for the whole cloud
+    POINT_SCALES_ESTIMATED = 2, ///< h_i from each point's neighbours
+    POINT_SCALES_FROM_ARRAY = 3 ///< h_i from the point array ScaleArrayName
   };
 
   /// Dimension of the cloud: AUTO (2 when all z are equal, else 3), 2 (xy-plane) or 3.
@@ -130,20 +131,21 @@ public:
   ///@}
 
   ///@{
-  /// SCALE_AUTOMATIC, SCALE_ONE, SCALE_PER_POINT or SCALE_FROM_ARRAY. Default SCALE_AUTOMATIC.
-  vtkSetClampMacro(ScaleMode, int, SCALE_AUTOMATIC, SCALE_FROM_ARRAY);
-  vtkGetMacro(ScaleMode, int);
-  void SetScaleModeToAutomatic() { this->SetScaleMode(SCALE_AUTOMATIC); }
-  void SetScaleModeToOne() { this->SetScaleMode(SCALE_ONE); }
-  void SetScaleModeToPerPoint() { this->SetScaleMode(SCALE_PER_POINT); }
-  void SetScaleModeToFromArray() { this->SetScaleMode(SCALE_FROM_ARRAY); }
+  /// POINT_SCALES_AUTOMATIC, POINT_SCALES_OFF, POINT_SCALES_ESTIMATED or POINT_SCALES_FROM_ARRAY. Default POINT_SCALES_AUTOMATIC.
+  vtkSetClampMacro(PointScales, int, POINT_SCALES_AUTOMATIC, POINT_SCALES_FROM_ARRAY);
+  vtkGetMacro(PointScales, int);
+  void SetPointScalesToAutomatic() { this->SetPointScales(POINT_SCALES_AUTOMATIC); }
+  void SetPointScalesToOff() { this->SetPointScales(POINT_SCALES_OFF); }
+  void SetPointScalesToEstimated() { this->SetPointScales(POINT_SCALES_ESTIMATED); }
+  void SetPointScalesToFromArray() { this->SetPointScales(POINT_SCALES_FROM_ARRAY); }
   ///@}
 
   ///@{
   /**
-   * SCALE_AUTOMATIC takes a scale per point when the 90th percentile of the per-point scales is
-   * more than this many times their 10th. Default 2 (measured: the bunny's merged scans 1.4, the
-   * paper's scenes at most 1.9; depth-camera frames 2.5 and more).
+   * POINT_SCALES_AUTOMATIC takes a scale per point when the 90th percentile of the per-point scales is
+   * more than this many times their 10th. Default 3 (measured: the bunny's merged scans 1.4, the
+   * paper's scenes 1.4-2.7, the noisy curve of its Fig. 1 the highest; unorganized depth frames
+   * 3.8 and a room scan 50).
    */
   vtkSetClampMacro(ScaleSpreadThreshold, double, 1.0, 1e6);
   vtkGetMacro(ScaleSpreadThreshold, double);
@@ -151,7 +153,7 @@ public:
 
   ///@{
   /**
-   * The point array of h_i for SCALE_FROM_ARRAY: one component, every value a positive finite
+   * The point array of h_i for POINT_SCALES_FROM_ARRAY: one component, every value a positive finite
    * number (ScaleMultiplier is not applied). Default "Scale".
    */
   vtkSetStringMacro(ScaleArrayName);
@@ -216,7 +218,7 @@ public:
   double GetEffectiveScale() const { return this->EffectiveScale; }
   /// True after a Prepare() that gave every point its own scale.
   bool GetUsesPointScales() const { return this->UsesPointScales; }
-  /// The spread (90th over 10th percentile) of the per-point scales SCALE_AUTOMATIC measured, or
+  /// The spread (90th over 10th percentile) of the per-point scales POINT_SCALES_AUTOMATIC measured, or
   /// of the array's or the data's scales with a scale per point; 0 when not measured.
   double GetScaleSpread() const { return this->ScaleSpread; }
   /// 2 or 3 after a successful Prepare().
@@ -280,8 +282,8 @@ protected:
   bool AutomaticScale = true;
   int ScaleNeighbors = 10;
   double ScaleMultiplier = 1.0;
-  int ScaleMode = SCALE_AUTOMATIC;
-  double ScaleSpreadThreshold = 2.0;
+  int PointScales = POINT_SCALES_AUTOMATIC;
+  double ScaleSpreadThreshold = 3.0;
   char* ScaleArrayName = nullptr;
   int Dimension = DIMENSION_AUTO;
   double KernelCutoff = 3.0;
@@ -297,9 +299,9 @@ private:
   /// The core's parameters at scale @p h.
   pss::SurfaceParameters Parameters(double h) const;
   /// Takes @p index and builds the definition at @p h (<= 0: the automatic scale over it, or
-  /// @p arrayScales, the ScaleArrayName values in input order, with SCALE_FROM_ARRAY).
+  /// @p arrayScales, the ScaleArrayName values in input order, with POINT_SCALES_FROM_ARRAY).
   bool Build(std::unique_ptr<pss::PointIndex> index, double h, const std::vector<double>& arrayScales = {});
-  /// Sets the per-point scales ScaleMode asks for on @p index, or none; the h to use (0: failed).
+  /// Sets the per-point scales PointScales asks for on @p index, or none; the h to use (0: failed).
   double ChooseScales(pss::PointIndex& index, const std::vector<double>& arrayScales);
 
   std::unique_ptr<pss::PointIndex> Index;
@@ -311,6 +313,7 @@ private:
   double EffectiveScale = 0.0;
   bool UsesPointScales = false;
   double ScaleSpread = 0.0;
+  bool SensorFrame = false; ///< the prepared cloud is an organized image or has a Viewpoint
   int EffectiveDimension = 3;
   vtkIdType SkippedPoints = 0;
 };

@@ -9,6 +9,7 @@
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkInformation.h"
+#include "vtkMultiProcessController.h"
 #include "vtkPointSet.h"
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
@@ -114,6 +115,19 @@ bool vtkPointSetSurfaceAlgorithm::ResolveViewpoint(vtkPointSet* cloud)
     vtkErrorMacro(<< "the viewpoint (" << viewpoint[0] << ", " << viewpoint[1] << ", " << viewpoint[2]
                   << ") is not finite");
     return false;
+  }
+  // At a cloud point the direction to the sensor is undefined there. Checked on a whole cloud
+  // only: in a distributed run a rank cannot fail alone without leaving the others waiting.
+  vtkMultiProcessController* controller = this->DistributedController();
+  if (cloud && (!controller || controller->GetNumberOfProcesses() == 1))
+  {
+    const vtkIdType hit = pss_vtk::PointAt(cloud->GetPoints(), viewpoint);
+    if (hit >= 0)
+    {
+      vtkErrorMacro(<< "the viewpoint (" << viewpoint[0] << ", " << viewpoint[1] << ", " << viewpoint[2]
+                    << ") is cloud point " << hit << ": the direction to the sensor is undefined there");
+      return false;
+    }
   }
   this->HasOrientationViewpoint = true;
   return true;

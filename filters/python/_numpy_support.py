@@ -285,8 +285,44 @@ def _run(algorithm, threads, progress):
         _Watch(algorithm, progress).run()
 
 
-def _configure_surface(surface, variant, h, scale_neighbors, scale_multiplier, dimension, cutoff, quadrature,
-                       delta_lattice, min_stability):
+_POINT_SCALES = ("automatic", "off", "estimated")
+
+
+def _configure_point_scales(surface, cloud, point_scales, scale_spread):
+    """point_scales: one of _POINT_SCALES, the name of a point array of the cloud, or h_i values;
+    values are attached to a shallow copy of the cloud, never to the caller's dataset."""
+    _set(surface, "ScaleSpreadThreshold", _number("scale_spread", scale_spread), "scale_spread (>= 1)")
+    if isinstance(point_scales, str):
+        if _key(point_scales) in [_key(name) for name in _POINT_SCALES]:
+            surface.SetPointScales(_choice("point_scales", point_scales, _POINT_SCALES))
+            return
+        if not cloud.polydata.GetPointData().GetArray(point_scales):
+            raise InputError("point_scales must be one of %s, the name of a point array of the cloud or one "
+                             "value per cloud point, got %r" % (", ".join(_POINT_SCALES), point_scales))
+        surface.SetPointScalesToFromArray()
+        surface.SetScaleArrayName(point_scales)
+        return
+    try:
+        values = np.ascontiguousarray(np.asarray(point_scales, dtype=np.float64))
+    except (TypeError, ValueError):
+        raise InputError("point_scales must be a name or one number per cloud point, got %r" % (point_scales,)) from None
+    count = cloud.polydata.GetNumberOfPoints()
+    if values.shape != (count,):
+        raise InputError("point_scales must hold one value per cloud point (%d), got the shape %s"
+                         % (count, values.shape))
+    # Zeros, negatives and NaN are the C++ side's to refuse, naming the point.
+    copy = cloud.polydata.NewInstance()
+    copy.ShallowCopy(cloud.polydata)
+    array = numpy_to_vtk(values, deep=True)
+    array.SetName("Scale")
+    copy.GetPointData().AddArray(array)
+    cloud.polydata = copy
+    surface.SetPointScalesToFromArray()
+    surface.SetScaleArrayName("Scale")
+
+
+def _configure_surface(surface, cloud, variant, h, scale_neighbors, scale_multiplier, point_scales, scale_spread,
+                       dimension, cutoff, quadrature, delta_lattice, min_stability):
     surface.SetVariant(_choice("variant", variant, VARIANTS, _VARIANT_ALIASES))
     if h is None:
         surface.AutomaticScaleOn()
@@ -296,6 +332,7 @@ def _configure_surface(surface, variant, h, scale_neighbors, scale_multiplier, d
         surface.SetScaleFactor(_number("h", h))
     _set(surface, "ScaleNeighbors", _number("scale_neighbors", scale_neighbors, integer=True), "scale_neighbors")
     _set(surface, "ScaleMultiplier", _number("scale_multiplier", scale_multiplier), "scale_multiplier")
+    _configure_point_scales(surface, cloud, point_scales, scale_spread)
     if isinstance(dimension, str) and _key(dimension) == "auto":
         surface.SetDimension(surface.DIMENSION_AUTO)
     else:
@@ -325,6 +362,8 @@ def _field_info(dataset, surface):
         info[array.GetName()] = values.item() if values.size == 1 else values.copy()
     info["h"] = surface.GetEffectiveScale()
     info["dimension"] = surface.GetEffectiveDimension()
+    info["point_scales"] = bool(surface.GetUsesPointScales())
+    info["scale_spread"] = surface.GetScaleSpread()
     return info
 
 
