@@ -151,6 +151,16 @@ void AddSurfaceOptions(OptionTable& t, vtkPointSetSurface* s)
       }
       s->SetScaleSpreadThreshold(r);
     });
+  t.Value("point-scale-multiplier", "M",
+    "estimated scales per point: h_i = --scale-multiplier x M x the point's smoothed k-NN distance (default 3)",
+    [s](const std::string& v) {
+      const double m = pss_cli::ToDouble("point-scale-multiplier", v);
+      if (!(m >= 1e-2 && m <= 1e2))
+      {
+        throw pss_cli::UsageError{ "--point-scale-multiplier expects a number in [0.01, 100], got '" + v + "'" };
+      }
+      s->SetPointScaleMultiplier(m);
+    });
   t.Value("scale-neighbors", "K", "automatic h: k of the k-th nearest neighbour distance (default 10)",
     [s](const std::string& v) { s->SetScaleNeighbors(pss_cli::ToInt("scale-neighbors", v)); });
   t.Value("scale-multiplier", "M", "automatic h: multiplier of the k-NN distances (default 1)",

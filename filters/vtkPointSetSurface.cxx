@@ -241,7 +241,8 @@ double vtkPointSetSurface::ChooseScales(pss::PointIndex& index, const std::vecto
   }
   else if (this->PointScales != POINT_SCALES_OFF && index.size() > static_cast<std::size_t>(this->ScaleNeighbors))
   {
-    scales = pss::estimateLocalScales(index, this->ScaleNeighbors, this->ScaleMultiplier, 2, threads);
+    scales = pss::estimateLocalScales(
+      index, this->ScaleNeighbors, this->ScaleMultiplier * this->PointScaleMultiplier, 2, threads);
   }
   this->ScaleSpread = scales.empty() ? 0.0 : pss::scaleSpread(scales);
   if (this->PointScales == POINT_SCALES_AUTOMATIC && !this->SensorFrame && !(this->ScaleSpread > this->ScaleSpreadThreshold))
@@ -309,6 +310,7 @@ void vtkPointSetSurface::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutomaticScale: " << (this->AutomaticScale ? "On" : "Off") << "\n";
   os << indent << "ScaleNeighbors: " << this->ScaleNeighbors << "\n";
   os << indent << "ScaleMultiplier: " << this->ScaleMultiplier << "\n";
+  os << indent << "PointScaleMultiplier: " << this->PointScaleMultiplier << "\n";
   os << indent << "PointScales: " << this->PointScales << "\n";
   os << indent << "ScaleSpreadThreshold: " << this->ScaleSpreadThreshold << "\n";
   os << indent << "ScaleArrayName: " << (this->ScaleArrayName ? this->ScaleArrayName : "(none)") << "\n";

@@ -23,7 +23,8 @@
  * neighbour (defaults 1 and 10: about five spacings along a curve, two on a surface), and a scale
  * per point h_i (weights exp(-|x - p_i|^2 / h_i^2): docs/paper.md, "A scale per point"), either
  * from the data (each point's ScaleNeighbors-th neighbour distance, median-smoothed over its
- * neighbours, times ScaleMultiplier) or from a point array (ScaleArrayName). The default,
+ * neighbours, times ScaleMultiplier and PointScaleMultiplier) or from a point array
+ * (ScaleArrayName). The default,
  * POINT_SCALES_AUTOMATIC, takes a scale per point only where the data call for it: for a sensor
  * frame (field data `GridDimensions` of an organized image, or a `Viewpoint`: what vtkPCDReader
  * and the depth-camera scene write) or when the 90th percentile of the data's per-point scales
@@ -149,6 +150,18 @@ public:
    */
   vtkSetClampMacro(ScaleSpreadThreshold, double, 1.0, 1e6);
   vtkGetMacro(ScaleSpreadThreshold, double);
+  ///@}
+
+  ///@{
+  /**
+   * The extra factor of estimated per-point scales: h_i = ScaleMultiplier x PointScaleMultiplier x
+   * the point's smoothed ScaleNeighbors-th neighbour distance. Default 3: in a depth frame the
+   * nearest neighbours lie in one depth layer of the sensor's quantization, and the weights must
+   * reach across layers (measured in docs/sensor-scans.md: on three real frames, 1 gives hundreds
+   * of pieces, 3 a few).
+   */
+  vtkSetClampMacro(PointScaleMultiplier, double, 1e-2, 1e2);
+  vtkGetMacro(PointScaleMultiplier, double);
   ///@}
 
   ///@{
@@ -282,6 +295,7 @@ protected:
   bool AutomaticScale = true;
   int ScaleNeighbors = 10;
   double ScaleMultiplier = 1.0;
+  double PointScaleMultiplier = 3.0;
   int PointScales = POINT_SCALES_AUTOMATIC;
   double ScaleSpreadThreshold = 3.0;
   char* ScaleArrayName = nullptr;

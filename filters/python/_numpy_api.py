@@ -30,7 +30,8 @@ __all__ = ["Error", "InputError", "SurfaceWarning", "Result", "VARIANTS", "proje
 
 
 def project(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0,
-            point_scales="automatic", scale_spread=3.0, dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5, min_stability=1e-5, procedure="extremal", max_iterations=100,
+            point_scales="automatic", point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0,
+            quadrature=6, delta_lattice=0.5, min_stability=1e-5, procedure="extremal", max_iterations=100,
             tolerance=1e-6, max_travel=1000.0, seek_maxima=False, threads=0, progress=None, nonfinite="raise",
             as_polydata=False):
     """Move points onto the point-set surface of a cloud (vtkPointSetSurfaceProjection, ``pss project``).
@@ -54,9 +55,12 @@ def project(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, sca
         With the automatic scale: "automatic" (default: a scale h_i per point for a sensor frame,
         i.e. a cloud with an organized grid or a Viewpoint, as PCD files carry, or where the
         estimated scales spread more than ``scale_spread``; else one h), "off" (one h),
-        "estimated" (h_i = scale_multiplier times each point's k-th neighbour distance, smoothed),
+        "estimated" (h_i from each point's k-th neighbour distance, see below),
         the name of a point array of the cloud holding h_i, or one h_i per cloud point.
         ``info["h"]`` is then the median h_i. Not with ``h`` given.
+    point_scale_multiplier : float
+        Estimated scales: h_i = scale_multiplier x point_scale_multiplier x each point's smoothed
+        k-th neighbour distance (0.01 to 100, default 3).
     scale_spread : float
         "automatic": the 90th over 10th percentile ratio of the estimated scales above which they
         are used (>= 1, default 3).
@@ -113,7 +117,8 @@ def project(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, sca
 
 
 def classify(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0,
-             point_scales="automatic", scale_spread=3.0, dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5, min_stability=1e-5, procedure="extremal", max_iterations=100,
+             point_scales="automatic", point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0,
+             quadrature=6, delta_lattice=0.5, min_stability=1e-5, procedure="extremal", max_iterations=100,
              tolerance=1e-6, max_travel=1000.0, seek_maxima=False, max_distance=1.0, max_normal_angle=30.0, threads=0,
              progress=None, nonfinite="raise", as_polydata=False):
     """Is each start point inside the domain of the surface? (vtkPointSetSurfaceDomainClassifier,
@@ -144,8 +149,8 @@ def _project(filter_, p, extra):
     nonfinite = _nonfinite(p["nonfinite"])
     cloud = _Cloud("cloud", p["cloud"], nonfinite)
     _configure_surface(filter_.GetSurface(), cloud, p["variant"], p["h"], p["scale_neighbors"], p["scale_multiplier"],
-                       p["point_scales"], p["scale_spread"], p["dimension"], p["cutoff"], p["quadrature"],
-                       p["delta_lattice"], p["min_stability"])
+                       p["point_scales"], p["point_scale_multiplier"], p["scale_spread"], p["dimension"], p["cutoff"],
+                       p["quadrature"], p["delta_lattice"], p["min_stability"])
     filter_.SetProcedure(_choice("procedure", p["procedure"], _PROCEDURES))
     _set(filter_, "MaxIterations", _number("max_iterations", p["max_iterations"], integer=True), "max_iterations")
     _set(filter_, "Tolerance", _number("tolerance", p["tolerance"]), "tolerance")
@@ -169,8 +174,8 @@ def _project(filter_, p, extra):
 
 
 def sample(cloud, probe=None, *, grid=None, margin=3.0, variant="com", h=None, scale_neighbors=10,
-           scale_multiplier=1.0, point_scales="automatic", scale_spread=3.0, dimension="auto", cutoff=3.0,
-           quadrature=6, delta_lattice=0.5, min_stability=1e-5,
+           scale_multiplier=1.0, point_scales="automatic", point_scale_multiplier=3.0, scale_spread=3.0,
+           dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5, min_stability=1e-5,
            orientation="away-from-centroid", reference_point=(0.0, 0.0, 0.0), reference_direction=(0.0, 0.0, 1.0),
            domain_labels=False, max_distance=1.0, max_normal_angle=30.0, max_iterations=100, tolerance=1e-6,
            threads=0, progress=None, nonfinite="raise", as_polydata=False):
@@ -185,8 +190,8 @@ def sample(cloud, probe=None, *, grid=None, margin=3.0, variant="com", h=None, s
     grid : (nx, ny) or (nx, ny, nz), optional
         Points of the grid along x, y, z (default (101, 101, 1); a 1 samples the mid-plane of that
         axis), spanning the cloud's bounds plus ``margin`` * h on every side.
-    variant, h, scale_neighbors, scale_multiplier, point_scales, scale_spread, dimension, cutoff, quadrature,
-    delta_lattice, min_stability : as in ``project()``.
+    variant, h, scale_neighbors, scale_multiplier, point_scales, point_scale_multiplier, scale_spread,
+    dimension, cutoff, quadrature, delta_lattice, min_stability : as in ``project()``.
     orientation : str
         How n is oriented: "away-from-centroid" (default), "away-from-point" (from
         ``reference_point``), "along-direction" (n . ``reference_direction`` >= 0) or "propagate"
@@ -210,7 +215,8 @@ def sample(cloud, probe=None, *, grid=None, margin=3.0, variant="com", h=None, s
     source = _Cloud("cloud", cloud, nonfinite)
     sampler = _filters.vtkPointSetSurfaceFieldSampler()
     _configure_surface(sampler.GetSurface(), source, variant, h, scale_neighbors, scale_multiplier, point_scales,
-                       scale_spread, dimension, cutoff, quadrature, delta_lattice, min_stability)
+                       point_scale_multiplier, scale_spread, dimension, cutoff, quadrature, delta_lattice,
+                       min_stability)
     sampler.SetOrientationMode(_choice("orientation", orientation, _ORIENTATIONS))
     sampler.SetReferencePoint(*_vector("reference_point", reference_point))
     sampler.SetReferenceDirection(*_vector("reference_direction", reference_direction))
@@ -268,10 +274,11 @@ def _vector(what, value):
 
 
 def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0, point_scales="automatic",
-         scale_spread=3.0, dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5, min_stability=1e-5, cell=1.0, band=1.0, project_vertices=True,
-         procedure="extremal", max_distance=1.0, max_normal_angle=30.0, max_vertex_travel=2.0, max_seam_angle=80.0,
-         max_fold_angle=60.0, max_hole_edges=100, min_piece_area=0.0, covered_piece_area=10.0,
-         max_band_cells=1 << 24, threads=0, progress=None, nonfinite="raise", as_polydata=False):
+         point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5,
+         min_stability=1e-5, cell=1.0, band=1.0, project_vertices=True, procedure="extremal", max_distance=1.0,
+         max_normal_angle=30.0, max_vertex_travel=2.0, max_seam_angle=80.0, max_fold_angle=60.0, max_hole_edges=100,
+         min_piece_area=0.0, covered_piece_area=10.0, max_band_cells=1 << 24, threads=0, progress=None,
+         nonfinite="raise", as_polydata=False):
     """The surface as a triangle mesh (segments in 2D), only where it is defined
     (vtkPointSetSurfaceMesher, ``pss mesh``).
 
@@ -279,8 +286,9 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
     ----------
     cloud : (N, 3) or (N, 2) array, file path or vtkPointSet
         The points that define the surface.
-    variant, h, scale_neighbors, scale_multiplier, point_scales, scale_spread, dimension, cutoff, quadrature,
-    delta_lattice, min_stability, procedure, max_distance, max_normal_angle : as in ``classify()``.
+    variant, h, scale_neighbors, scale_multiplier, point_scales, point_scale_multiplier, scale_spread,
+    dimension, cutoff, quadrature, delta_lattice, min_stability, procedure, max_distance, max_normal_angle :
+    as in ``classify()``.
     cell : float
         Grid cell size, in h (0.05 to 100).
     band : float
@@ -317,7 +325,8 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
     source = _Cloud("cloud", cloud, nonfinite)
     mesher = _filters.vtkPointSetSurfaceMesher()
     _configure_surface(mesher.GetSurface(), source, variant, h, scale_neighbors, scale_multiplier, point_scales,
-                       scale_spread, dimension, cutoff, quadrature, delta_lattice, min_stability)
+                       point_scale_multiplier, scale_spread, dimension, cutoff, quadrature, delta_lattice,
+                       min_stability)
     _set(mesher, "CellSize", _number("cell", cell), "cell")
     _set(mesher, "Band", _number("band", band), "band")
     mesher.SetProjectVertices(bool(project_vertices))

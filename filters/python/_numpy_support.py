@@ -288,10 +288,12 @@ def _run(algorithm, threads, progress):
 _POINT_SCALES = ("automatic", "off", "estimated")
 
 
-def _configure_point_scales(surface, cloud, point_scales, scale_spread):
+def _configure_point_scales(surface, cloud, point_scales, point_scale_multiplier, scale_spread):
     """point_scales: one of _POINT_SCALES, the name of a point array of the cloud, or h_i values;
     values are attached to a shallow copy of the cloud, never to the caller's dataset."""
-    _set(surface, "ScaleSpreadThreshold", _number("scale_spread", scale_spread), "scale_spread (>= 1)")
+    _set(surface, "ScaleSpreadThreshold", _number("scale_spread", scale_spread), "scale_spread")
+    _set(surface, "PointScaleMultiplier", _number("point_scale_multiplier", point_scale_multiplier),
+         "point_scale_multiplier")
     if isinstance(point_scales, str):
         if _key(point_scales) in [_key(name) for name in _POINT_SCALES]:
             surface.SetPointScales(_choice("point_scales", point_scales, _POINT_SCALES))
@@ -305,7 +307,8 @@ def _configure_point_scales(surface, cloud, point_scales, scale_spread):
     try:
         values = np.ascontiguousarray(np.asarray(point_scales, dtype=np.float64))
     except (TypeError, ValueError):
-        raise InputError("point_scales must be a name or one number per cloud point, got %r" % (point_scales,)) from None
+        raise InputError("point_scales must be a name or one number per cloud point, got %r"
+                         % (point_scales,)) from None
     count = cloud.polydata.GetNumberOfPoints()
     if values.shape != (count,):
         raise InputError("point_scales must hold one value per cloud point (%d), got the shape %s"
@@ -321,8 +324,9 @@ def _configure_point_scales(surface, cloud, point_scales, scale_spread):
     surface.SetScaleArrayName("Scale")
 
 
-def _configure_surface(surface, cloud, variant, h, scale_neighbors, scale_multiplier, point_scales, scale_spread,
-                       dimension, cutoff, quadrature, delta_lattice, min_stability):
+def _configure_surface(surface, cloud, variant, h, scale_neighbors, scale_multiplier, point_scales,
+                       point_scale_multiplier, scale_spread, dimension, cutoff, quadrature, delta_lattice,
+                       min_stability):
     surface.SetVariant(_choice("variant", variant, VARIANTS, _VARIANT_ALIASES))
     if h is None:
         surface.AutomaticScaleOn()
@@ -332,7 +336,7 @@ def _configure_surface(surface, cloud, variant, h, scale_neighbors, scale_multip
         surface.SetScaleFactor(_number("h", h))
     _set(surface, "ScaleNeighbors", _number("scale_neighbors", scale_neighbors, integer=True), "scale_neighbors")
     _set(surface, "ScaleMultiplier", _number("scale_multiplier", scale_multiplier), "scale_multiplier")
-    _configure_point_scales(surface, cloud, point_scales, scale_spread)
+    _configure_point_scales(surface, cloud, point_scales, point_scale_multiplier, scale_spread)
     if isinstance(dimension, str) and _key(dimension) == "auto":
         surface.SetDimension(surface.DIMENSION_AUTO)
     else:

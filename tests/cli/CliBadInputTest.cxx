@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <utility>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -429,4 +430,39 @@ TEST(CliBadInput, ViewpointFlag)
   EXPECT_NE(r.output.find("is not finite"), std::string::npos) << r.output;
   r = RunCommand(Pss() + " project " + cloud + " --viewpoint 0,0,1 --h 0.3" + out);
   EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+// The per-point scale flags: bad values are usage errors (exit 2); a missing or bad Scale array and
+// a viewpoint at a cloud point are the filter's errors (exit 1).
+TEST(CliBadInput, PointScaleFlags)
+{
+  std::string grid;
+  for (int i = 0; i < 100; ++i)
+  {
+    grid += std::to_string(0.1 * (i % 10)) + " " + std::to_string(0.1 * (i / 10)) + " 0\n";
+  }
+  const std::string cloud = Write("scales-grid.xyz", grid);
+  const std::string out = " -o " + TempPath("scales-out.vtp");
+  const std::pair<const char*, const char*> usage[] = {
+    { " --scale-multiplier 0", "--scale-multiplier" },
+    { " --scale-multiplier -2", "--scale-multiplier" },
+    { " --point-scale-multiplier 0", "--point-scale-multiplier expects a number in [0.01, 100]" },
+    { " --scale-spread 0.5", "--scale-spread expects a ratio >= 1" },
+    { " --point-scales sometimes", "point-scales" },
+  };
+  for (const auto& [flags, message] : usage)
+  {
+    const CommandResult r = RunCommand(Pss() + " project " + cloud + flags + out);
+    EXPECT_EQ(r.exitCode, 2) << flags << ": " << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << flags << ": " << r.output;
+  }
+  CommandResult r = RunCommand(Pss() + " project " + cloud + " --point-scales array" + out);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("no one-component point array named \"Scale\""), std::string::npos) << r.output;
+  r = RunCommand(Pss() + " project " + cloud + " --viewpoint 0.3,0.4,0" + out);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("is cloud point 43"), std::string::npos) << r.output;
+  r = RunCommand(Pss() + " project " + cloud + " --point-scales estimated" + out + " --verbose");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("(median of a scale per point)"), std::string::npos) << r.output;
 }

@@ -9,7 +9,8 @@ Fails (exit status 1, one line per problem) when
   File > Open lists them);
 - a property named X does not call SetX;
 - a property's default_values differ from the initial value of the C++ member it sets (read from
-  the class's header and its superclasses' headers in filters/), or the member cannot be found;
+  the class's header and its superclasses' headers in filters/; a string's from the
+  this->SetX("...") of its constructor), or the member cannot be found;
 - a range or enumeration domain allows values that the C++ setter's vtkSetClampMacro clamps away;
 - a class of the VTK module has no proxy (vtkPointSetSurfaceImplicitFunction excepted: it is not a
   pipeline object, see docs/paraview.md; nor the abstract vtkPointSetSurfaceAlgorithm), or the surface sub-proxy does not expose every
@@ -50,6 +51,11 @@ class Header:
 
     def __init__(self, path):
         text = open(path, encoding="utf-8").read()
+        # String members (vtkSetStringMacro) get their initial value in the constructor.
+        source = os.path.splitext(path)[0] + ".cxx"
+        self.strings = {}
+        if os.path.exists(source):
+            self.strings = dict(re.findall(r'this->Set(\w+)\("([^"]*)"\);', open(source, encoding="utf-8").read()))
         # Drop comments so documentation examples are not read as code.
         text = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
         text = re.sub(r"//[^\n]*", "", text)
@@ -167,6 +173,16 @@ def main():
                 member = command[3:]
                 if member != prop.get("name"):
                     problems.append("%s: property %s calls %s (expected Set%s)" % (pwhere, prop.get("name"), command, prop.get("name")))
+                if prop.tag == "StringVectorProperty":
+                    cpp = next((h.strings[member] for h in chain if member in h.strings), None)
+                    if cpp is None:
+                        problems.append("%s: no this->Set%s(\"...\") in the constructor of %s"
+                                        % (pwhere, member, proxy.get("class")))
+                    elif prop.get("default_values") != cpp:
+                        problems.append("%s: XML default %r, C++ default %r" % (pwhere, prop.get("default_values"), cpp))
+                    else:
+                        checked_defaults += 1
+                    continue
                 cpp = next((h.members[member] for h in chain if member in h.members), None)
                 if cpp is None:
                     problems.append("%s: no C++ member %s with an initial value in %s" % (pwhere, member, proxy.get("class")))

@@ -16,6 +16,7 @@ import warnings
 import numpy as np
 
 import pointsetsurfaces as pss
+from vtkmodules.util import numpy_support
 from vtkmodules.vtkCommonCore import vtkSMPTools
 
 
@@ -126,6 +127,30 @@ class ProjectTest(unittest.TestCase):
         r = pss.project(cloud, h=2.5, dimension=3)
         self.assertEqual(r.info["h"], 2.5)
         self.assertEqual(r.info["dimension"], 3)
+
+    def test_a_scale_per_point(self):
+        cloud, normal, rng = self.plane()
+        start = cloud[::7] + rng.uniform(-0.3, 0.3, (len(cloud[::7]), 1)) * normal
+        single = pss.project(cloud, start, h=2.5, dimension=3)
+        self.assertFalse(single.info["point_scales"])
+        # Equal scales given per point are the single h.
+        equal = pss.project(cloud, start, point_scales=np.full(len(cloud), 2.5), dimension=3)
+        self.assertTrue(equal.info["point_scales"])
+        self.assertEqual(equal.info["h"], 2.5)
+        self.assertLess(np.abs(equal.points - single.points).max(), 1e-12 * 2.5)
+        # Scales growing tenfold across the plane still project onto it.
+        varying = 1.0 + 9.0 * (cloud[:, 0] - cloud[:, 0].min()) / np.ptp(cloud[:, 0])
+        r = pss.project(cloud, start, point_scales=varying, dimension=3)
+        self.assertTrue(np.all(r.StopReason == 0))
+        self.assertLess(np.abs((r.points - cloud[0]) @ normal).max(), 1e-6)
+        # A point array of the cloud, by name.
+        poly = pss.project(cloud, as_polydata=True, h=2.5)
+        scale = numpy_support.numpy_to_vtk(np.full(poly.GetNumberOfPoints(), 2.5), deep=True)
+        scale.SetName("Radius")
+        poly.GetPointData().AddArray(scale)
+        named = pss.project(poly, poly, point_scales="Radius")
+        self.assertTrue(named.info["point_scales"])
+        self.assertEqual(named.info["h"], 2.5)
 
     def test_circle_in_two_columns(self):
         c = circle(200)
@@ -400,6 +425,17 @@ class ErrorsTest(unittest.TestCase):
                                    delta_lattice=0.01)
         self.assert_raises_quietly(pss.Error, "the mesh band would have more than", pss.mesh, cloud,
                                    max_band_cells=10)
+        self.assert_raises_quietly(pss.InputError, "scale_multiplier must be within", pss.project, cloud,
+                                   scale_multiplier=0.0)
+        self.assert_raises_quietly(pss.InputError, "point_scales must hold one value per cloud point (200)",
+                                   pss.project, cloud, point_scales=np.ones(199))
+        self.assert_raises_quietly(pss.InputError, "point_scales must be one of automatic, off, estimated",
+                                   pss.project, cloud, point_scales="Radius")
+        for bad in (0.0, -1.0, float("nan")):
+            scales = np.ones(200)
+            scales[5] = bad
+            self.assert_raises_quietly(pss.Error, "the scale of point 5 must be a positive finite number",
+                                       pss.project, cloud, point_scales=scales)
         with self.assertRaises(TypeError):
             pss.project(cloud, scale=2.0)  # not a keyword of project
 
@@ -431,6 +467,8 @@ class DefaultsTest(unittest.TestCase):
     def test_defaults(self):
         surface = pss.vtkPointSetSurface()
         surface_names = {"scale_neighbors": "GetScaleNeighbors", "scale_multiplier": "GetScaleMultiplier",
+                         "point_scale_multiplier": "GetPointScaleMultiplier",
+                         "scale_spread": "GetScaleSpreadThreshold",
                          "cutoff": "GetKernelCutoff", "quadrature": "GetQuadratureOrder",
                          "delta_lattice": "GetDeltaLatticeSpacing", "min_stability": "GetMinimumStability"}
         for function in (pss.project, pss.classify, pss.sample, pss.mesh):
@@ -438,6 +476,8 @@ class DefaultsTest(unittest.TestCase):
             self.assertEqual(pss.VARIANTS[surface.GetVariant()], d["variant"])
             self.assertEqual(d["h"] is None, surface.GetAutomaticScale())
             self.assertEqual(d["dimension"], "auto")
+            self.assertEqual(d["point_scales"], "automatic")
+            self.assertEqual(surface.GetPointScales(), surface.POINT_SCALES_AUTOMATIC)
             self.assertEqual(surface.GetDimension(), surface.DIMENSION_AUTO)
             self.assertEqual(d["threads"], 0)
             self.check(function, surface, surface_names)
