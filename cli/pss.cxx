@@ -683,7 +683,7 @@ int Mesh(const std::vector<std::string>& args)
     [&](const std::string& v) { mesher->SetMaxFoldAngle(pss_cli::ToDouble("max-fold-angle", v)); });
   t.Value("max-hole-edges", "N", "3D: close holes of at most N edges unless the scan has no data at their centre (default 100)",
     [&](const std::string& v) { mesher->SetMaxHoleEdges(pss_cli::ToInt("max-hole-edges", v)); });
-  t.Value("min-piece-area", "A", "3D: remove pieces smaller than A h^2 (default 0: keep all)",
+  t.Value("min-piece-area", "A", "3D: remove pieces smaller than A h^2 (default 10; 0 keeps all)",
     [&](const std::string& v) { mesher->SetMinPieceArea(pss_cli::ToDouble("min-piece-area", v)); });
   t.Value("covered-piece-area", "A", "3D: remove pieces smaller than A h^2 lying over the largest piece's interior (default 10; 0: keep all)",
     [&](const std::string& v) { mesher->SetCoveredPieceArea(pss_cli::ToDouble("covered-piece-area", v)); });

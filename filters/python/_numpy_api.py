@@ -277,7 +277,7 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
          point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5,
          min_stability=1e-5, cell=1.0, band=1.0, project_vertices=True, procedure="extremal", max_distance=1.0,
          max_normal_angle=30.0, max_vertex_travel=2.0, max_seam_angle=80.0, max_fold_angle=60.0, max_hole_edges=100,
-         min_piece_area=0.0, covered_piece_area=10.0, max_band_cells=1 << 24, threads=0, progress=None,
+         min_piece_area=10.0, covered_piece_area=10.0, max_band_cells=1 << 24, threads=0, progress=None,
          nonfinite="raise", as_polydata=False):
     """The surface as a triangle mesh (segments in 2D), only where it is defined
     (vtkPointSetSurfaceMesher, ``pss mesh``).

@@ -362,14 +362,15 @@ TEST(Mesh, TwoSheetsOneAndAHalfHApart)
   {
     pss::MeshOptions options;
     options.cellSize = 0.5;
+    options.minPieceArea = 0.0; // every piece kept: what the definitions give
     const pss::SurfaceMesh mesh = meshOf(index, v, 1.0, options);
     SCOPED_TRACE(pss::variantName(v));
     describe(mesh);
     const auto middle = std::count_if(
       mesh.points.begin(), mesh.points.end(), [](const Vec3& p) { return std::abs(p.z()) < 0.375; });
     EXPECT_GT(middle, 0); // a spurious piece between the sheets: the MLS definitions' failure here
-    // Those pieces are small: removing pieces under 25 h^2 removes them, and leaves both sheets.
-    options.minPieceArea = 25.0;
+    // Those pieces are small: the default MinPieceArea (10 h^2) removes them, and leaves both sheets.
+    options.minPieceArea = pss::MeshOptions().minPieceArea;
     const pss::SurfaceMesh cleaned = meshOf(index, v, 1.0, options);
     EXPECT_GT(cleaned.statistics.removedPieces, 0u);
     EXPECT_EQ(std::count_if(cleaned.points.begin(), cleaned.points.end(), [](const Vec3& p) { return std::abs(p.z()) < 0.375; }), 0);
