@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 using namespace pss;
@@ -362,8 +363,30 @@ TEST(AdaptiveScale, LocalScalesFollowTheSpacingAndTheirArguments)
   EXPECT_THROW(estimateLocalScales(index, 10, 1.0, -1), std::invalid_argument);
   PointIndex tiny(std::vector<Vec3>(5, Vec3::Zero()), 3);
   EXPECT_THROW(estimateLocalScales(tiny), std::invalid_argument);
+  EXPECT_THROW(estimateLocalScales(index, 10, 1.0, 2, 1, 0.0), std::invalid_argument);
   // Two threads give the same scales bit for bit.
   EXPECT_EQ(estimateLocalScales(index, 10, 1.0, 2, 1), estimateLocalScales(index, 10, 1.0, 2, 2));
+
+  // A cluster of stray points far from the plane, too many for the median to smooth away (the
+  // smoothing alone fixes a cluster of fewer than k / 2): their k-th neighbour is on the plane,
+  // 30 units away, but their scale stops at maxRatio times the median.
+  std::vector<Vec3> stray = even;
+  for (int i = 0; i < 8; ++i)
+  {
+    stray.emplace_back(0.1 * (i % 4), 0.1 * (i / 4), 30.0);
+  }
+  PointIndex withStray(stray, 3);
+  const std::vector<double> capped = estimateLocalScales(withStray);
+  const std::vector<double> free = estimateLocalScales(withStray, 10, 1.0, 2, 1, std::numeric_limits<double>::infinity());
+  std::vector<double> sorted(capped);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  for (std::size_t i = even.size(); i < stray.size(); ++i)
+  {
+    EXPECT_GT(free[i], 25.0) << "uncapped: the distance to the plane";
+    EXPECT_DOUBLE_EQ(capped[i], 6.0 * median) << "stray point " << i;
+  }
+  EXPECT_EQ(capped[0], free[0]) << "the plane's own scales are below the cap";
 }
 
 } // namespace

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pss/KernelDispatch.h"
 
+#include <array>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -140,7 +141,58 @@ Eigen::Index compactCandidatesBaseline(const double* px, const double* py, const
   return compactTail(px, py, pz, sq, 0, m, 0, origin, limit, minSq, nb);
 }
 
+// The scaled candidates below @p bound (scaled squared distances), in order: their offsets,
+// squared distances, 1/h_i^2 and h_i, and in weight the exponent minScaled - scaled (<= 0) that
+// expNonPositive turns into the weight. Candidates from @p i on, n kept so far; branch-free as
+// compactTail.
+PSS_KERNEL_INLINE Eigen::Index compactScaledTail(const ScaledCandidates& c, Eigen::Index i, Eigen::Index n,
+  const Vec3& origin, double bound, double minScaled, Neighbourhood& nb)
+{
+  for (; i < c.count; ++i)
+  {
+    nb.dx[n] = c.px[i] - origin.x();
+    nb.dy[n] = c.py[i] - origin.y();
+    nb.dz[n] = c.pz[i] - origin.z();
+    nb.sqDist[n] = c.sq[i];
+    nb.inverseSqScale[n] = c.pk[i];
+    nb.pointScale[n] = c.ph[i];
+    nb.weight[n] = minScaled - c.scaledSq[i];
+    n += static_cast<Eigen::Index>(c.scaledSq[i] < bound);
+  }
+  return n;
+}
+
+Eigen::Index compactScaledBaseline(
+  const ScaledCandidates& c, const Vec3& origin, double bound, double minScaled, Neighbourhood& nb)
+{
+  return compactScaledTail(c, 0, 0, origin, bound, minScaled, nb);
+}
+
 #if PSS_KERNEL_DISPATCH
+// For each 4-bit mask of kept lanes, the permutation (pairs of 32-bit indices) that moves them to
+// the front in order.
+const std::array<std::array<std::int32_t, 8>, 16>& compactPermutations()
+{
+  static const auto table = [] {
+    std::array<std::array<std::int32_t, 8>, 16> t{};
+    for (int mask = 0; mask < 16; ++mask)
+    {
+      int slot = 0;
+      for (int lane = 0; lane < 4; ++lane)
+      {
+        if (mask & (1 << lane))
+        {
+          t[mask][2 * slot] = 2 * lane;
+          t[mask][2 * slot + 1] = 2 * lane + 1;
+          ++slot;
+        }
+      }
+    }
+    return t;
+  }();
+  return table;
+}
+
 // The lanes of v picked by perm (pairs of 32-bit indices), in order.
 PSS_TARGET_AVX2 inline __m256d moveDownAvx2(__m256d v, __m256i perm)
 {
@@ -154,23 +206,7 @@ PSS_TARGET_AVX2 Eigen::Index compactCandidatesAvx2(const double* px, const doubl
   Eigen::Index i = 0;
   // Four candidates at a time: the kept ones are moved to the front of the vector by a permutation
   // chosen from the 4-bit mask, and the whole vector is stored at n.
-  static const auto permutations = [] {
-    std::array<std::array<std::int32_t, 8>, 16> table{};
-    for (int mask = 0; mask < 16; ++mask)
-    {
-      int slot = 0;
-      for (int lane = 0; lane < 4; ++lane)
-      {
-        if (mask & (1 << lane))
-        {
-          table[mask][2 * slot] = 2 * lane;
-          table[mask][2 * slot + 1] = 2 * lane + 1;
-          ++slot;
-        }
-      }
-    }
-    return table;
-  }();
+  const auto& permutations = compactPermutations();
   const __m256d ox = _mm256_set1_pd(origin.x());
   const __m256d oy = _mm256_set1_pd(origin.y());
   const __m256d oz = _mm256_set1_pd(origin.z());
@@ -191,6 +227,35 @@ PSS_TARGET_AVX2 Eigen::Index compactCandidatesAvx2(const double* px, const doubl
     n += __builtin_popcount(static_cast<unsigned>(mask));
   }
   return compactTail(px, py, pz, sq, i, m, n, origin, limit, minSq, nb);
+}
+
+PSS_TARGET_AVX2 Eigen::Index compactScaledAvx2(
+  const ScaledCandidates& c, const Vec3& origin, double bound, double minScaled, Neighbourhood& nb)
+{
+  const auto& permutations = compactPermutations();
+  const __m256d ox = _mm256_set1_pd(origin.x());
+  const __m256d oy = _mm256_set1_pd(origin.y());
+  const __m256d oz = _mm256_set1_pd(origin.z());
+  const __m256d lim = _mm256_set1_pd(bound);
+  const __m256d least = _mm256_set1_pd(minScaled);
+  Eigen::Index n = 0;
+  Eigen::Index i = 0;
+  for (; i + 4 <= c.count; i += 4)
+  {
+    const __m256d s = _mm256_loadu_pd(c.scaledSq + i);
+    const int mask = _mm256_movemask_pd(_mm256_cmp_pd(s, lim, _CMP_LT_OQ));
+    const __m256i perm =
+      _mm256_loadu_si256(reinterpret_cast<const __m256i*>(permutations[static_cast<std::size_t>(mask)].data()));
+    _mm256_storeu_pd(nb.dx.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(c.px + i), ox), perm));
+    _mm256_storeu_pd(nb.dy.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(c.py + i), oy), perm));
+    _mm256_storeu_pd(nb.dz.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(c.pz + i), oz), perm));
+    _mm256_storeu_pd(nb.sqDist.data() + n, moveDownAvx2(_mm256_loadu_pd(c.sq + i), perm));
+    _mm256_storeu_pd(nb.inverseSqScale.data() + n, moveDownAvx2(_mm256_loadu_pd(c.pk + i), perm));
+    _mm256_storeu_pd(nb.pointScale.data() + n, moveDownAvx2(_mm256_loadu_pd(c.ph + i), perm));
+    _mm256_storeu_pd(nb.weight.data() + n, moveDownAvx2(_mm256_sub_pd(least, s), perm));
+    n += __builtin_popcount(static_cast<unsigned>(mask));
+  }
+  return compactScaledTail(c, i, n, origin, bound, minScaled, nb);
 }
 #endif
 
@@ -320,9 +385,10 @@ const KernelTable& kernels()
 {
   static const KernelTable table = [] {
     const KernelTable baseline{ "baseline", compactCandidatesBaseline, weightsBaseline, expBaseline,
-      scatterBaseline, momentsBaseline };
+      scatterBaseline, momentsBaseline, compactScaledBaseline };
 #if PSS_KERNEL_DISPATCH
-    const KernelTable avx2{ "avx2", compactCandidatesAvx2, weightsAvx2, expAvx2, scatterAvx2, momentsAvx2 };
+    const KernelTable avx2{ "avx2", compactCandidatesAvx2, weightsAvx2, expAvx2, scatterAvx2, momentsAvx2,
+      compactScaledAvx2 };
     const char* forced = std::getenv("PSS_SIMD");
     if (forced && std::strcmp(forced, "baseline") == 0)
     {

@@ -19,6 +19,20 @@ namespace dispatch
 // instruction set chosen.
 constexpr int SimdLanes = 4;
 
+// The candidates of a neighbourhood with a scale per point (CandidateCache's arrays): coordinates,
+// squared distances, their scaled values |p - y|^2 / h_i^2, 1 / h_i^2 and h_i.
+struct ScaledCandidates
+{
+  const double* px;
+  const double* py;
+  const double* pz;
+  const double* sq;
+  const double* scaledSq;
+  const double* pk;
+  const double* ph;
+  Eigen::Index count;
+};
+
 // One copy of every kernel per instruction set, and the table of the copy in use.
 struct KernelTable
 {
@@ -32,6 +46,7 @@ struct KernelTable
     double*);
   void (*moments)(const double*, const double*, const double*, const double*, Eigen::Index, double, double, double,
     double*);
+  Eigen::Index (*compactScaled)(const ScaledCandidates&, const Vec3&, double, double, Neighbourhood&);
 };
 
 /// The copy of the kernels in use: AVX2 when the CPU has it, unless PSS_SIMD=baseline.

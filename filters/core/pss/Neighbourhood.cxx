@@ -121,21 +121,10 @@ void gatherScaled(const PointIndex& index, const SurfaceParameters& params, cons
   const double minScaled = scaledSq.minCoeff();
   const double bound = minScaled + params.cutoff * params.cutoff;
   nb.resize(m);
-  // Every candidate is written, and the count moves on only for those kept (no branch to
-  // mispredict); the exponents go to weight, for expNonPositive below.
-  const Vec3& y = nb.origin;
-  Eigen::Index n = 0;
-  for (Eigen::Index i = 0; i < m; ++i)
-  {
-    nb.dx[n] = cache.px[i] - y.x();
-    nb.dy[n] = cache.py[i] - y.y();
-    nb.dz[n] = cache.pz[i] - y.z();
-    nb.sqDist[n] = sq[i];
-    nb.inverseSqScale[n] = cache.pk[i];
-    nb.pointScale[n] = cache.ph[i];
-    nb.weight[n] = minScaled - scaledSq[i];
-    n += scaledSq[i] < bound ? 1 : 0;
-  }
+  // The exponents go to weight, for expNonPositive below.
+  const dispatch::ScaledCandidates candidates{ cache.px.data(), cache.py.data(), cache.pz.data(), sq.data(),
+    scaledSq.data(), cache.pk.data(), cache.ph.data(), m };
+  const Eigen::Index n = kernels().compactScaled(candidates, nb.origin, bound, minScaled, nb);
   // The last vector is padded with neighbours of weight 0 at offset 0, which add nothing.
   const Eigen::Index padded = (n + SimdLanes - 1) / SimdLanes * SimdLanes;
   for (Eigen::Index i = n; i < padded; ++i)

@@ -221,13 +221,18 @@ double estimateScale(const PointIndex& index, int k = 10, double multiplier = 1.
  * A scale per point (for PointIndex::setScales; input order, NaN for skipped points): the distance
  * from each point to its @p k-th nearest neighbour, replaced @p smoothing times by the median of
  * the values over the point and its k nearest neighbours (so the scale follows the density but
- * not the jitter of one neighbourhood), times @p multiplier. With even density every h_i is near
- * estimateScale's h. Points whose neighbours all coincide with them take the smallest positive
- * scale. Throws std::invalid_argument for k < 1, smoothing < 0, a multiplier that is not positive
- * and finite, or fewer than k + 1 points. The same for every thread count.
+ * not the jitter of one neighbourhood), at most @p maxRatio times their median, times
+ * @p multiplier. With even density every h_i is near estimateScale's h. The cap is for isolated
+ * points (outliers, a few stray returns far behind the scene): their k-th neighbour is far, and
+ * such a scale would let them reach, and cost, every evaluation across the frame and hold up a
+ * surface far from the data; 6 leaves a depth camera's range (0.6 to 3 m, spacing 5 times apart)
+ * alone. Points whose neighbours all coincide with them take the smallest positive scale.
+ * Throws std::invalid_argument for k < 1, smoothing < 0, a multiplier or maxRatio that is not
+ * positive (maxRatio may be infinite: no cap), or fewer than k + 1 points. The same for every
+ * thread count.
  */
-std::vector<double> estimateLocalScales(
-  const PointIndex& index, int k = 10, double multiplier = 1.0, int smoothing = 2, int threads = 1);
+std::vector<double> estimateLocalScales(const PointIndex& index, int k = 10, double multiplier = 1.0,
+  int smoothing = 2, int threads = 1, double maxRatio = 6.0);
 
 /// How much the positive finite @p scales vary: their 90th percentile over their 10th (1 when
 /// there is none). The automatic scale mode compares it to a threshold (docs/paper.md).

@@ -56,11 +56,13 @@ double estimateScale(const PointIndex& index, int k, double multiplier, int thre
   return multiplier * distances[distances.size() / 2];
 }
 
-std::vector<double> estimateLocalScales(const PointIndex& index, int k, double multiplier, int smoothing, int threads)
+std::vector<double> estimateLocalScales(
+  const PointIndex& index, int k, double multiplier, int smoothing, int threads, double maxRatio)
 {
-  if (k < 1 || smoothing < 0 || !(multiplier > 0.0) || !std::isfinite(multiplier))
+  if (k < 1 || smoothing < 0 || !(multiplier > 0.0) || !std::isfinite(multiplier) || !(maxRatio > 0.0))
   {
-    throw std::invalid_argument("local scales need k >= 1, smoothing >= 0 and a positive finite multiplier");
+    throw std::invalid_argument(
+      "local scales need k >= 1, smoothing >= 0, a positive finite multiplier and a positive maxRatio");
   }
   const std::size_t n = index.size();
   const auto kk = static_cast<std::size_t>(k);
@@ -115,10 +117,14 @@ std::vector<double> estimateLocalScales(const PointIndex& index, int k, double m
       smallest = std::min(smallest, r);
     }
   }
+  std::vector<double> sorted(raw);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2), sorted.end());
+  const double cap = maxRatio * sorted[n / 2];
   std::vector<double> out(n + index.skippedCount(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < n; ++i)
   {
-    out[index.originalId(i)] = multiplier * (raw[i] > 0.0 ? raw[i] : smallest);
+    const double own = raw[i] > 0.0 ? raw[i] : smallest;
+    out[index.originalId(i)] = multiplier * (own > cap ? cap : own);
   }
   return out;
 }
