@@ -157,7 +157,7 @@ public:
    * The extra factor of estimated per-point scales: h_i = ScaleMultiplier x PointScaleMultiplier x
    * the point's smoothed ScaleNeighbors-th neighbour distance. Default 3: in a depth frame the
    * nearest neighbours lie in one depth layer of the sensor's quantization, and the weights must
-   * reach across layers (measured in docs/sensor-scans.md: on three real frames, 1 gives hundreds
+   * reach across layers (measured in docs/adaptive-scale.md: on three real frames, 1 gives hundreds
    * of pieces, 3 a few).
    */
   vtkSetClampMacro(PointScaleMultiplier, double, 1e-2, 1e2);
