@@ -244,30 +244,9 @@ TEST(AdaptiveScale, ConstantScalesGiveTheSingleScaleProjections)
   }
 }
 
-// The plane z = 0 sampled on a grid whose spacing grows tenfold from x = 0 to x = L (rows and
-// columns alike), the scales estimated from the data: every definition projects starts above and
-// below the whole patch onto the plane, and the classifier finds them in the domain. A single h
-// (the median) leaves the sparse end undefined: counted, to show what the scales change.
-std::vector<Vec3> gradedPlane(double s0, double ratio, double length)
-{
-  std::vector<double> xs{ 0.0 };
-  const double growth = std::log(ratio) / length;
-  while (xs.back() < length)
-  {
-    xs.push_back(xs.back() + s0 * std::exp(growth * xs.back()));
-  }
-  std::vector<Vec3> pts;
-  for (const double x : xs)
-  {
-    const double s = s0 * std::exp(growth * x);
-    for (double y = -0.5 * length; y <= 0.5 * length; y += s)
-    {
-      pts.emplace_back(x, y, 0.0);
-    }
-  }
-  return pts;
-}
-
+// The plane z = 0 sampled with spacing growing tenfold along x (gradedPlane), the scales
+// estimated from the data: every definition projects starts above and below the whole patch onto
+// the plane, and the classifier finds them in the domain.
 TEST(AdaptiveScale, PlaneWithTenfoldSpacingProjectsOntoThePlane)
 {
   const double length = 60.0;

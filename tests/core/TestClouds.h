@@ -37,6 +37,28 @@ inline const std::array<pss::Variant, pss::VariantCount>& allVariants()
   return v;
 }
 
+/// The plane z = 0 on a grid whose spacing grows from s0 at x = 0 to ratio * s0 at x = length
+/// (rows and columns alike, each column's spacing that of its x), |y| <= length / 2.
+inline std::vector<Vec3> gradedPlane(double s0, double ratio, double length)
+{
+  std::vector<double> xs{ 0.0 };
+  const double growth = std::log(ratio) / length;
+  while (xs.back() < length)
+  {
+    xs.push_back(xs.back() + s0 * std::exp(growth * xs.back()));
+  }
+  std::vector<Vec3> pts;
+  for (const double x : xs)
+  {
+    const double s = s0 * std::exp(growth * x);
+    for (double y = -0.5 * length; y <= 0.5 * length; y += s)
+    {
+      pts.emplace_back(x, y, 0.0);
+    }
+  }
+  return pts;
+}
+
 /// Points (i * spacing, 0, 0) for |i * spacing| <= halfLength: a straight line along x.
 inline std::vector<Vec3> lineCloud(double halfLength, double spacing)
 {

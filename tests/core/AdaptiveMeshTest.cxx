@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The mesh with a scale per point (PointIndex::setScales, estimateLocalScales) on shapes whose
+// sampling density varies tenfold: a plane graded along one axis, a sphere dense at one pole and
+// sparse at the other. The surface must stay whole, where one h would tear its sparse part.
+#include "TestClouds.h"
+
+#include "pss/SurfaceMesh.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <random>
+#include <utility>
+
+namespace
+{
+using namespace pss;
+using namespace pss_test;
+
+double medianScale(const PointIndex& index)
+{
+  std::vector<double> h(index.size());
+  for (std::size_t i = 0; i < h.size(); ++i)
+  {
+    h[i] = index.scale(i);
+  }
+  std::nth_element(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(h.size() / 2), h.end());
+  return h[h.size() / 2];
+}
+
+SurfaceMesh meshWithScales(PointIndex& index, double multiplier, const MeshOptions& options = {})
+{
+  index.setScales(estimateLocalScales(index, 10, multiplier));
+  auto surface = makeSurface(Variant::CenterOfMass, index, params(medianScale(index)));
+  return extractSurfaceMesh(*surface, options, 0);
+}
+
+// Edges used by one triangle only, as (vertex, vertex) pairs.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> boundaryEdges(const SurfaceMesh& mesh)
+{
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (const auto& t : mesh.triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      ++uses[{ std::min(a, b), std::max(a, b) }];
+    }
+  }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  for (const auto& [edge, count] : uses)
+  {
+    if (count == 1)
+    {
+      out.push_back(edge);
+    }
+  }
+  return out;
+}
+
+} // namespace
+
+// The plane z = 0, spacing 0.2 at x = 0 growing to 2 at x = 60, |y| <= 30: one piece, every
+// boundary edge at the patch's own border (within two local scales of it), every vertex within
+// 0.05 local h of the plane.
+TEST(AdaptiveMesh, TenfoldGradedPlaneIsOnePieceOnThePlane)
+{
+  const double length = 60.0;
+  PointIndex index(gradedPlane(0.2, 10.0, length), 3);
+  const SurfaceMesh mesh = meshWithScales(index, 1.0);
+  const MeshStatistics& st = mesh.statistics;
+  std::cout << "points " << index.size() << ", h_i " << index.minScale() << " to " << index.maxScale()
+            << ", triangles " << mesh.triangles.size() << ", pieces " << st.components << ", boundary "
+            << st.boundaryEdges << "\n";
+  EXPECT_EQ(st.components, 1u);
+  EXPECT_EQ(st.nonManifoldEdges, 0u);
+  ASSERT_GT(mesh.triangles.size(), 1000u);
+  double worst = 0.0;
+  for (const Vec3& p : mesh.points)
+  {
+    const double h = index.scale(index.nearest(p).first);
+    worst = std::max(worst, std::abs(p.z()) / h);
+  }
+  EXPECT_LT(worst, 0.05) << "the largest |z| / local h";
+  std::size_t inside = 0;
+  for (const auto& [a, b] : boundaryEdges(mesh))
+  {
+    const Vec3 m = 0.5 * (mesh.points[a] + mesh.points[b]);
+    const double h = index.scale(index.nearest(m).first);
+    const double toBorder = std::min({ m.x(), length - m.x(), 0.5 * length - std::abs(m.y()) });
+    inside += toBorder > 2.0 * h ? 1 : 0;
+  }
+  EXPECT_EQ(inside, 0u) << "boundary edges inside the patch";
+  EXPECT_EQ(st.boundaryEdges, boundaryEdges(mesh).size());
+}
+
+// A sphere of radius 20 whose sampling density falls tenfold from the south pole to the north
+// pole (a regular Fibonacci lattice, thinned deterministically): one closed piece, Euler
+// characteristic 2, as close to the sphere as the local scale allows.
+TEST(AdaptiveMesh, SphereDenseOnOneSideIsOneClosedPiece)
+{
+  const double radius = 20.0;
+  const int lattice = 60000;
+  std::vector<Vec3> pts;
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  double kept = 0.0;
+  for (int i = 0; i < lattice; ++i)
+  {
+    const double z = 1.0 - 2.0 * (i + 0.5) / lattice;
+    const double r = std::sqrt(1.0 - z * z);
+    // Keep a share 10^(-(1 + z) / 2) of the lattice: 1 at the south pole, 0.1 at the north.
+    kept += std::pow(10.0, -0.5 * (1.0 + z));
+    if (kept >= 1.0)
+    {
+      kept -= 1.0;
+      pts.emplace_back(radius * r * std::cos(golden * i), radius * r * std::sin(golden * i), radius * z);
+    }
+  }
+  PointIndex index(pts, 3);
+  const SurfaceMesh mesh = meshWithScales(index, 1.0);
+  const MeshStatistics& st = mesh.statistics;
+  std::cout << "points " << index.size() << ", h_i " << index.minScale() << " to " << index.maxScale()
+            << ", triangles " << mesh.triangles.size() << ", pieces " << st.components << ", boundary "
+            << st.boundaryEdges << ", euler " << st.eulerCharacteristic << "\n";
+  EXPECT_GT(index.maxScale() / index.minScale(), 2.5) << "the density varies tenfold";
+  EXPECT_EQ(st.components, 1u);
+  EXPECT_EQ(st.boundaryEdges, 0u);
+  EXPECT_EQ(st.nonManifoldEdges, 0u);
+  EXPECT_EQ(st.eulerCharacteristic, 2);
+  // The centre-of-mass surface of a sphere lies inside it by about h^2 / (2 R) to h^2 / R (the
+  // weighted centroid of a curved neighbourhood); with a scale per point, by the local one's.
+  double worst = 0.0;
+  for (const Vec3& p : mesh.points)
+  {
+    const double h = index.scale(index.nearest(p).first);
+    worst = std::max(worst, std::abs(p.norm() - radius) / (h * h / radius));
+  }
+  std::cout << "largest |r - R| / (h^2 / R): " << worst << "\n";
+  EXPECT_LT(worst, 1.5);
+}
