@@ -78,10 +78,11 @@ pss::Orientation OrientationFor(const double* viewpoint, const pss::Vec3& centro
 
 void AddSurfaceFieldData(vtkDataObject* output, vtkPointSetSurface* surface)
 {
-  AddSurfaceFieldData(output, surface->GetEffectiveScale(), surface->GetEffectiveDimension());
+  AddSurfaceFieldData(
+    output, surface->GetEffectiveScale(), surface->GetEffectiveDimension(), surface->GetUsesPointScales());
 }
 
-void AddSurfaceFieldData(vtkDataObject* output, double h, int dimension)
+void AddSurfaceFieldData(vtkDataObject* output, double h, int dimension, bool pointScales)
 {
   auto scale = NewArray<vtkDoubleArray>("ScaleFactor", 1, 1);
   scale->SetValue(0, h);
@@ -89,6 +90,9 @@ void AddSurfaceFieldData(vtkDataObject* output, double h, int dimension)
   dimensionArray->SetValue(0, dimension);
   output->GetFieldData()->AddArray(scale);
   output->GetFieldData()->AddArray(dimensionArray);
+  auto perPoint = NewArray<vtkIntArray>("PointScales", 1, 1);
+  perPoint->SetValue(0, pointScales ? 1 : 0);
+  output->GetFieldData()->AddArray(perPoint);
 }
 
 vtkMTimeType LatestMTime(vtkMTimeType own, vtkObject* part)

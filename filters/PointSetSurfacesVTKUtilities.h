@@ -49,12 +49,13 @@ vtkIdType PointAt(vtkPoints* points, const double x[3]);
 /// else away from @p centroid (the rule for closed shapes).
 pss::Orientation OrientationFor(const double* viewpoint, const pss::Vec3& centroid);
 
-/// Records the h and the dimension a prepared @p surface used as field data "ScaleFactor" and
-/// "Dimension" of @p output, so files written downstream say how they were made.
+/// Records the h, the dimension and whether each point had its own scale (h is then their median)
+/// that a prepared @p surface used as field data "ScaleFactor", "Dimension" and "PointScales"
+/// (0 or 1) of @p output, so files written downstream say how they were made.
 void AddSurfaceFieldData(vtkDataObject* output, vtkPointSetSurface* surface);
 /// The same from the values themselves (a distributed run's h and dimension, whatever surface
 /// the rank prepared last).
-void AddSurfaceFieldData(vtkDataObject* output, double h, int dimension);
+void AddSurfaceFieldData(vtkDataObject* output, double h, int dimension, bool pointScales = false);
 
 /// The later of @p own and the modification time of @p part (just @p own when part is null):
 /// how the filters fold their vtkPointSetSurface into GetMTime().

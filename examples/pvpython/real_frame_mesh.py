@@ -8,7 +8,7 @@ from the sensor.
 
 File > Open's reader for .pcd (the plugin's PCD reader) reads the frame: its finite points with
 their colours, the image's size and the sensor's VIEWPOINT. Point Set Surface Mesh runs with every
-default (one automatic h for the whole frame). Both views look from the viewpoint towards the
+default (a scale per point for a sensor frame: docs/adaptive-scale.md). Both views look from the viewpoint towards the
 cloud's centre, image rows downwards as the camera saw them: on the left the points in their own
 colours, on the right the mesh coloured by Stability, with the counts a user checks first (points,
 h, triangles, pieces, boundary edges) and the mesher's time in the titles.
@@ -69,6 +69,7 @@ def main():
     triangles = data.GetNumberOfPolys()
     pieces, boundary = int(field_value(data, "Components") or 0), int(field_value(data, "BoundaryEdges") or 0)
     h = field_value(data, "ScaleFactor") or 0.0
+    scale = ("a scale per point, median h = %.3g" if field_value(data, "PointScales") else "one automatic h = %.3g") % h
 
     layout = pvs.CreateLayout("Frame and mesh")
     layout.SplitHorizontal(0, 0.5)
@@ -77,8 +78,8 @@ def main():
     name = os.path.basename(args.frame)
     titles = [
         "%s: %s points (%s invalid pixels left out)" % (name, "{:,}".format(npoints), "{:,}".format(skipped)),
-        "Point Set Surface Mesh, %s, one automatic h = %.3g\n%s triangles, %s pieces, %s boundary edges, %.1f s"
-        % (VARIANTS[args.variant], h, "{:,}".format(triangles), "{:,}".format(pieces), "{:,}".format(boundary), seconds),
+        "Point Set Surface Mesh, %s, %s\n%s triangles, %s pieces, %s boundary edges, %.1f s"
+        % (VARIANTS[args.variant], scale, "{:,}".format(triangles), "{:,}".format(pieces), "{:,}".format(boundary), seconds),
     ]
     x0, x1, y0, y1, z0, z1 = cloud.GetBounds()
     centre = [(x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2]
