@@ -282,6 +282,30 @@ PSS_KERNEL_INLINE void weightsBody(const double* sqDist, const double* dx, const
   sums[3] = lanesSum(sz);
 }
 
+// The same with a scale per point: @p weight holds the exponents on entry (compactScaled's
+// minScaled - |p - y|^2 / h_i^2, -inf in the padding) and the weights on return;
+// sums[] = {sum w, sum w dx, sum w dy, sum w dz, sum w h_i}.
+PSS_KERNEL_INLINE void scaledWeightsBody(const double* dx, const double* dy, const double* dz, const double* pointScale,
+  double* weight, Eigen::Index padded, double* sums)
+{
+  VecD sw{}, sx{}, sy{}, sz{}, sh{};
+  for (Eigen::Index i = 0; i < padded; i += SimdLanes)
+  {
+    const VecD w = expNonPositive(load(weight + i));
+    store(weight + i, w);
+    sw += w;
+    sx += w * load(dx + i);
+    sy += w * load(dy + i);
+    sz += w * load(dz + i);
+    sh += w * load(pointScale + i);
+  }
+  sums[0] = lanesSum(sw);
+  sums[1] = lanesSum(sx);
+  sums[2] = lanesSum(sy);
+  sums[3] = lanesSum(sz);
+  sums[4] = lanesSum(sh);
+}
+
 PSS_KERNEL_INLINE void expBody(const double* x, double* out, Eigen::Index n)
 {
   Eigen::Index i = 0;
@@ -359,6 +383,11 @@ PSS_KERNEL_INLINE void momentsBody(const double* weight, const double* dx, const
   {                                                                                                              \
     weightsBody(sqDist, dx, dy, dz, weight, padded, minSq, invH2, sums);                                         \
   }                                                                                                              \
+  TARGET void scaledWeights##SUFFIX(const double* dx, const double* dy, const double* dz, const double* h,       \
+    double* weight, Eigen::Index padded, double* sums)                                                           \
+  {                                                                                                              \
+    scaledWeightsBody(dx, dy, dz, h, weight, padded, sums);                                                      \
+  }                                                                                                              \
   TARGET void exp##SUFFIX(const double* x, double* out, Eigen::Index n)                                         \
   {                                                                                                              \
     expBody(x, out, n);                                                                                          \
@@ -385,10 +414,10 @@ const KernelTable& kernels()
 {
   static const KernelTable table = [] {
     const KernelTable baseline{ "baseline", compactCandidatesBaseline, weightsBaseline, expBaseline,
-      scatterBaseline, momentsBaseline, compactScaledBaseline };
+      scatterBaseline, momentsBaseline, compactScaledBaseline, scaledWeightsBaseline };
 #if PSS_KERNEL_DISPATCH
     const KernelTable avx2{ "avx2", compactCandidatesAvx2, weightsAvx2, expAvx2, scatterAvx2, momentsAvx2,
-      compactScaledAvx2 };
+      compactScaledAvx2, scaledWeightsAvx2 };
     const char* forced = std::getenv("PSS_SIMD");
     if (forced && std::strcmp(forced, "baseline") == 0)
     {

@@ -134,14 +134,16 @@ void gatherScaled(const PointIndex& index, const SurfaceParameters& params, cons
     nb.inverseSqScale[i] = nb.pointScale[i] = 0.0;
     nb.weight[i] = -std::numeric_limits<double>::infinity();
   }
-  expNonPositive(nb.weight.data(), nb.weight.data(), padded);
+  // Weights, their sum, the first moments and the weighted scale in one pass.
+  double sums[5];
+  kernels().scaledWeights(
+    nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.pointScale.data(), nb.weight.data(), padded, sums);
   nb.count = n;
   nb.minSqDist = nb.d2().minCoeff();
   nb.minScaledSqDist = minScaled;
-  const auto w = nb.w();
-  nb.weightSum = w.sum();
-  nb.moment = Vec3((w * nb.x()).sum(), (w * nb.y()).sum(), (w * nb.z()).sum());
-  nb.localScale = (w * nb.pointScale.head(n)).sum() / nb.weightSum;
+  nb.weightSum = sums[0];
+  nb.moment = Vec3(sums[1], sums[2], sums[3]);
+  nb.localScale = sums[4] / nb.weightSum;
   noteReach(index, nb.origin, scaledReachSq(index, nb, params.cutoff), ws);
 }
 
