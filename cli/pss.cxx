@@ -408,10 +408,11 @@ int Generate(const std::vector<std::string>& args)
   vtkNew<vtkPointSetSurfaceCloudSource> source;
   OptionTable t;
   AddCommonOptions(t, run);
-  t.Value("scene", "NAME", "line | circle | corner | noisy-curve | plane | sphere | two-sheets (default noisy-curve)",
+  t.Value("scene", "NAME",
+    "line | circle | corner | noisy-curve | plane | sphere | two-sheets | depth-camera (default noisy-curve)",
     [&](const std::string& v) {
       source->SetScene(pss_cli::ToChoice("scene", v,
-        { "line", "circle", "corner", "noisy-curve", "plane", "sphere", "two-sheets" }));
+        { "line", "circle", "corner", "noisy-curve", "plane", "sphere", "two-sheets", "depth-camera" }));
     });
   t.Value("count", "N", "number of points (default 1000)", [&](const std::string& v) {
     const int n = pss_cli::ToInt("count", v);
@@ -434,6 +435,17 @@ int Generate(const std::vector<std::string>& args)
     [&](const std::string& v) { source->SetCornerAngle(pss_cli::ToDouble("corner-angle", v)); });
   t.Value("gap", "G", "distance between the two sheets (default 10)",
     [&](const std::string& v) { source->SetSheetGap(pss_cli::ToDouble("gap", v)); });
+  // The depth camera's own flags; its count, size and dimension follow from the image.
+  t.Value("image", "WxH", "depth-camera: pixels across and down (default 640x480)", [&](const std::string& v) {
+    int w = 0, h = 0;
+    char extra = 0;
+    if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+      throw UsageError{ "--image expects WIDTHxHEIGHT, each in [1, 16384], got '" + v + "'" };
+    source->SetImageWidth(w);
+    source->SetImageHeight(h);
+  });
+  t.Value("depth-noise", "S0", "depth-camera: depth noise sigma = S0 z^2, S0 in 1/m (default 0.0012)",
+    [&](const std::string& v) { source->SetDepthNoise(pss_cli::ToDouble("depth-noise", v)); });
   std::vector<std::string> positional;
   if (!ParseCommand("generate", "-o FILE [options]", "Writes a synthetic test cloud with a known shape.", t, args,
         positional))
@@ -702,7 +714,7 @@ int Mesh(const std::vector<std::string>& args)
 
 const char* const MainHelp = "usage: pss SUBCOMMAND [options]   (pss SUBCOMMAND --help for its flags)\n"
                              "\n"
-                             "  generate   write a synthetic cloud (line, circle, corner, noisy-curve, plane, sphere, two-sheets)\n"
+                             "  generate   write a synthetic cloud (line, circle, corner, noisy-curve, plane, sphere, two-sheets, depth-camera)\n"
                              "  project    move points onto a point-set surface\n"
                              "  classify   label start points InDomain / Spurious / Undefined / NotConverged\n"
                              "  sample     sample n, e, delta and g on a grid or at the points of a dataset\n"
