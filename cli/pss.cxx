@@ -408,8 +408,7 @@ int Generate(const std::vector<std::string>& args)
   vtkNew<vtkPointSetSurfaceCloudSource> source;
   OptionTable t;
   AddCommonOptions(t, run);
-  t.Value("scene", "NAME",
-    "line | circle | corner | noisy-curve | plane | sphere | two-sheets | depth-camera (default noisy-curve)",
+  t.Value("scene", "NAME", "line | circle | corner | noisy-curve | plane | sphere | two-sheets | depth-camera (default noisy-curve)",
     [&](const std::string& v) {
       source->SetScene(pss_cli::ToChoice("scene", v,
         { "line", "circle", "corner", "noisy-curve", "plane", "sphere", "two-sheets", "depth-camera" }));
@@ -435,14 +434,10 @@ int Generate(const std::vector<std::string>& args)
     [&](const std::string& v) { source->SetCornerAngle(pss_cli::ToDouble("corner-angle", v)); });
   t.Value("gap", "G", "distance between the two sheets (default 10)",
     [&](const std::string& v) { source->SetSheetGap(pss_cli::ToDouble("gap", v)); });
-  // The depth camera's own flags; its count, size and dimension follow from the image.
   t.Value("image", "WxH", "depth-camera: pixels across and down (default 640x480)", [&](const std::string& v) {
-    int w = 0, h = 0;
-    char extra = 0;
-    if (std::sscanf(v.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
-      throw UsageError{ "--image expects WIDTHxHEIGHT, each in [1, 16384], got '" + v + "'" };
-    source->SetImageWidth(w);
-    source->SetImageHeight(h);
+    const std::pair<int, int> size = pss_cli::ToImageSize("image", v, 16384);
+    source->SetImageWidth(size.first);
+    source->SetImageHeight(size.second);
   });
   t.Value("depth-noise", "S0", "depth-camera: depth noise sigma = S0 z^2, S0 in 1/m (default 0.0012)",
     [&](const std::string& v) { source->SetDepthNoise(pss_cli::ToDouble("depth-noise", v)); });
