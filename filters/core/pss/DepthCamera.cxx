@@ -63,7 +63,6 @@ struct TableScene
 
   Vec3 pointToTable(const Vec3& p) const { return sensor + directionToTable(p); }
   Vec3 directionToTable(const Vec3& d) const { return Vec3(axes[0].dot(d), axes[1].dot(d), axes[2].dot(d)); }
-  Vec3 directionToSensor(const Vec3& d) const { return d.x() * axes[0] + d.y() * axes[1] + d.z() * axes[2]; }
 
   // Box coordinates: centred, along the box's edges.
   Vec3 toBox(const Vec3& p) const
