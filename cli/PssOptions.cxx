@@ -131,6 +131,27 @@ void ToDimensions(const std::string& flag, const std::string& text, int dims[3])
   }
 }
 
+std::pair<int, int> ToImageSize(const std::string& flag, const std::string& text, int largest)
+{
+  const auto x = text.find('x');
+  int width = 0, height = 0;
+  try
+  {
+    width = x == std::string::npos ? 0 : ToInt(flag, text.substr(0, x));
+    height = x == std::string::npos ? 0 : ToInt(flag, text.substr(x + 1));
+  }
+  catch (const UsageError&)
+  {
+    width = height = 0; // reported below with the expected form
+  }
+  if (width < 1 || height < 1 || width > largest || height > largest)
+  {
+    throw UsageError{ "--" + flag + " expects WIDTHxHEIGHT, each in [1, " + std::to_string(largest) + "], got '" +
+      text + "'" };
+  }
+  return { width, height };
+}
+
 int ToChoice(const std::string& flag, const std::string& text, const std::vector<std::string>& names)
 {
   auto canonical = [](std::string s) {

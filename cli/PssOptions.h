@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pss_cli
@@ -51,6 +52,8 @@ double ToDouble(const std::string& flag, const std::string& text);
 int ToInt(const std::string& flag, const std::string& text);
 /// "NX,NY,NZ" (or "NX,NY" for NZ = 1).
 void ToDimensions(const std::string& flag, const std::string& text, int dims[3]);
+/// "WxH", each in [1, @p largest]: an image's pixels across and down (width, height).
+std::pair<int, int> ToImageSize(const std::string& flag, const std::string& text, int largest);
 /// Index of @p text in @p names (case-insensitive, '-' and '_' equivalent).
 int ToChoice(const std::string& flag, const std::string& text, const std::vector<std::string>& names);
 

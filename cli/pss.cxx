@@ -418,10 +418,10 @@ int Generate(const std::vector<std::string>& args)
   vtkNew<vtkPointSetSurfaceCloudSource> source;
   OptionTable t;
   AddCommonOptions(t, run);
-  t.Value("scene", "NAME", "line | circle | corner | noisy-curve | plane | sphere | two-sheets (default noisy-curve)",
+  t.Value("scene", "NAME", "line | circle | corner | noisy-curve | plane | sphere | two-sheets | depth-camera (default noisy-curve)",
     [&](const std::string& v) {
       source->SetScene(pss_cli::ToChoice("scene", v,
-        { "line", "circle", "corner", "noisy-curve", "plane", "sphere", "two-sheets" }));
+        { "line", "circle", "corner", "noisy-curve", "plane", "sphere", "two-sheets", "depth-camera" }));
     });
   t.Value("count", "N", "number of points (default 1000)", [&](const std::string& v) {
     const int n = pss_cli::ToInt("count", v);
@@ -444,6 +444,13 @@ int Generate(const std::vector<std::string>& args)
     [&](const std::string& v) { source->SetCornerAngle(pss_cli::ToDouble("corner-angle", v)); });
   t.Value("gap", "G", "distance between the two sheets (default 10)",
     [&](const std::string& v) { source->SetSheetGap(pss_cli::ToDouble("gap", v)); });
+  t.Value("image", "WxH", "depth-camera: pixels across and down (default 640x480)", [&](const std::string& v) {
+    const std::pair<int, int> size = pss_cli::ToImageSize("image", v, 16384);
+    source->SetImageWidth(size.first);
+    source->SetImageHeight(size.second);
+  });
+  t.Value("depth-noise", "S0", "depth-camera: depth noise sigma = S0 z^2, S0 in 1/m (default 0.0012)",
+    [&](const std::string& v) { source->SetDepthNoise(pss_cli::ToDouble("depth-noise", v)); });
   std::vector<std::string> positional;
   if (!ParseCommand("generate", "-o FILE [options]", "Writes a synthetic test cloud with a known shape.", t, args,
         positional))
@@ -712,7 +719,7 @@ int Mesh(const std::vector<std::string>& args)
 
 const char* const MainHelp = "usage: pss SUBCOMMAND [options]   (pss SUBCOMMAND --help for its flags)\n"
                              "\n"
-                             "  generate   write a synthetic cloud (line, circle, corner, noisy-curve, plane, sphere, two-sheets)\n"
+                             "  generate   write a synthetic cloud (line, circle, corner, noisy-curve, plane, sphere, two-sheets, depth-camera)\n"
                              "  project    move points onto a point-set surface\n"
                              "  classify   label start points InDomain / Spurious / Undefined / NotConverged\n"
                              "  sample     sample n, e, delta and g on a grid or at the points of a dataset\n"

@@ -5,8 +5,11 @@
 #include "PointSetSurfacesVTKUtilities.h"
 
 #include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -18,6 +21,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <new>
 #include <stdexcept>
 #include <vector>
@@ -43,6 +47,10 @@ int vtkPointSetSurfaceCloudSource::RequestData(
     outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
   {
     return 1; // the whole cloud goes to piece 0
+  }
+  if (this->Scene == DEPTH_CAMERA)
+  {
+    return this->RequestDepthCamera(output);
   }
 
   pss::CloudSpec spec;
@@ -116,6 +124,93 @@ int vtkPointSetSurfaceCloudSource::RequestData(
   return 1;
 }
 
+int vtkPointSetSurfaceCloudSource::RequestDepthCamera(vtkPolyData* output)
+{
+  pss::CloudSpec spec;
+  spec.scene = pss::Scene::DepthCamera;
+  spec.seed = static_cast<unsigned>(this->Seed);
+  spec.camera.width = this->ImageWidth;
+  spec.camera.height = this->ImageHeight;
+  spec.camera.depthNoise = this->DepthNoise;
+  pss::DepthFrame frame;
+  try
+  {
+    frame = pss::generateDepthFrame(spec); // validates the camera
+  }
+  catch (const std::invalid_argument& e)
+  {
+    vtkErrorMacro(<< "invalid depth camera (ImageWidth " << this->ImageWidth << ", ImageHeight " << this->ImageHeight
+                  << ", DepthNoise " << this->DepthNoise << "): " << e.what());
+    return 0;
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro(<< "not enough memory for a " << this->ImageWidth << " x " << this->ImageHeight << " depth frame");
+    return 0;
+  }
+
+  const vtkIdType n = static_cast<vtkIdType>(frame.points.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  auto distance = pss_vtk::NewArray<vtkDoubleArray>("DistanceToShape", 0, 1);
+  auto pixel = pss_vtk::NewArray<vtkIntArray>("Pixel", 0, 2);
+  auto surface = pss_vtk::NewArray<vtkIntArray>("SurfaceId", 0, 1);
+  auto sigma = pss_vtk::NewArray<vtkDoubleArray>("NoiseSigma", 0, 1);
+  try
+  {
+    points->SetNumberOfPoints(n);
+    distance->SetNumberOfTuples(n);
+    pixel->SetNumberOfTuples(n);
+    surface->SetNumberOfTuples(n);
+    sigma->SetNumberOfTuples(n);
+  }
+  catch (const std::bad_alloc&)
+  {
+    vtkErrorMacro(<< "not enough memory for " << n << " points");
+    return 0;
+  }
+  if (!pss_vtk::ParallelFor(this, n, [&](vtkIdType i) {
+        const pss::Vec3& p = frame.points[static_cast<std::size_t>(i)];
+        // A pixel the sensor did not measure has no distance to speak of.
+        distance->SetValue(i, pss::isFinite(p) ? pss::distanceToShape(spec, p) : std::numeric_limits<double>::quiet_NaN());
+      }))
+  {
+    return 1; // aborted: leave the output empty
+  }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const pss::DepthPixel& px = frame.pixels[static_cast<std::size_t>(i)];
+    points->SetPoint(i, frame.points[static_cast<std::size_t>(i)].data());
+    pixel->SetTypedComponent(i, 0, px.column); // vtkPCDReader's layout: column, then row
+    pixel->SetTypedComponent(i, 1, px.row);
+    surface->SetValue(i, static_cast<int>(px.surface));
+    sigma->SetValue(i, px.sigma);
+  }
+
+  output->SetPoints(points);
+  output->SetVerts(pss_vtk::VertexCells(n));
+  vtkPointData* pointData = output->GetPointData();
+  pointData->SetScalars(distance);
+  pointData->AddArray(pixel);
+  pointData->AddArray(surface);
+  pointData->AddArray(sigma);
+  // The field data of an organized cloud read by vtkPCDReader, so that vtkPCDWriter writes an
+  // organized file and the filters orient n toward the sensor.
+  vtkNew<vtkIdTypeArray> grid;
+  grid->SetName("GridDimensions");
+  grid->InsertNextValue(frame.width);
+  grid->InsertNextValue(frame.height);
+  output->GetFieldData()->AddArray(grid);
+  vtkNew<vtkDoubleArray> viewpoint;
+  viewpoint->SetName("Viewpoint");
+  for (double v : { frame.viewpoint.x(), frame.viewpoint.y(), frame.viewpoint.z(), 1.0, 0.0, 0.0, 0.0 })
+  {
+    viewpoint->InsertNextValue(v); // tx ty tz, then the identity quaternion qw qx qy qz
+  }
+  output->GetFieldData()->AddArray(viewpoint);
+  return 1;
+}
+
 void vtkPointSetSurfaceCloudSource::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -127,4 +222,7 @@ void vtkPointSetSurfaceCloudSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Dimension: " << this->Dimension << "\n";
   os << indent << "CornerAngle: " << this->CornerAngle << "\n";
   os << indent << "SheetGap: " << this->SheetGap << "\n";
+  os << indent << "ImageWidth: " << this->ImageWidth << "\n";
+  os << indent << "ImageHeight: " << this->ImageHeight << "\n";
+  os << indent << "DepthNoise: " << this->DepthNoise << "\n";
 }

@@ -11,11 +11,13 @@
 #include "vtkStaticCellLocator.h"
 #include "vtkStaticPointLocator.h"
 
+#include "pss/PointIndex.h"
 #include "pss/SurfaceMesh.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -212,6 +214,57 @@ double SegmentDistance(const Vec3& p, const Vec3& a, const Vec3& b)
   return (p - (a + t * ab)).norm();
 }
 
+double Median(std::vector<double>& v)
+{
+  if (v.empty())
+  {
+    return 0.0;
+  }
+  const auto middle = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), middle, v.end());
+  return *middle;
+}
+
+// Each indexed point's local spacing: the median, over its @p neighbours nearest points, of their
+// distances to their nearest other point at a positive distance (0 when all are duplicates).
+std::vector<double> LocalSpacings(const pss::PointIndex& index, std::size_t neighbours)
+{
+  const std::size_t n = index.size();
+  std::vector<double> nearest(n, 0.0);
+  std::vector<double> spacing(n, 0.0);
+  const std::size_t k = std::min(n, neighbours + 1);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(n), [&](vtkIdType begin, vtkIdType end) {
+    std::vector<std::pair<std::uint32_t, double>> near;
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      index.kNearest(index.point(static_cast<std::size_t>(i)), k, near);
+      for (const auto& [j, d2] : near)
+      {
+        if (d2 > 0.0)
+        {
+          nearest[static_cast<std::size_t>(i)] = std::sqrt(d2);
+          break;
+        }
+      }
+    }
+  });
+  vtkSMPTools::For(0, static_cast<vtkIdType>(n), [&](vtkIdType begin, vtkIdType end) {
+    std::vector<std::pair<std::uint32_t, double>> near;
+    std::vector<double> values;
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      index.kNearest(index.point(static_cast<std::size_t>(i)), std::min(n, neighbours), near);
+      values.clear();
+      for (const auto& entry : near)
+      {
+        values.push_back(nearest[entry.first]);
+      }
+      spacing[static_cast<std::size_t>(i)] = Median(values);
+    }
+  });
+  return spacing;
+}
+
 } // namespace
 
 BoundaryReport ClassifyBoundary(
@@ -384,6 +437,115 @@ std::string Describe(const MeshQuality& q, double unit, const char* unitName)
     << q.completeness.p99 / unit << ", max " << q.completeness.max / unit << "; beyond threshold "
     << 100.0 * q.completenessBeyond << "%\n"
     << "spurious area " << 100.0 * q.spuriousShare << "%\n";
+  return s.str();
+}
+
+ReferenceFreeQuality MeasureWithoutReference(vtkPolyData* mesh, vtkPoints* cloud, const ReferenceFreeOptions& options)
+{
+  ReferenceFreeQuality q;
+  pss::SurfaceMesh m = TrianglesOf(mesh);
+  pss::countTopology(m);
+  q.triangles = static_cast<vtkIdType>(m.triangles.size());
+  q.area = m.statistics.measure;
+  q.components = m.statistics.components;
+  q.largestComponentShare = q.area > 0.0 ? m.statistics.largestComponentMeasure / q.area : 0.0;
+  q.boundaryEdges = m.statistics.boundaryEdges;
+  q.nonManifoldEdges = m.statistics.nonManifoldEdges;
+
+  std::vector<Vec3> points(cloud ? static_cast<std::size_t>(cloud->GetNumberOfPoints()) : 0);
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    cloud->GetPoint(static_cast<vtkIdType>(i), points[i].data());
+  }
+  const pss::PointIndex index(std::move(points), 3); // leaves non-finite points out
+  q.cloudPoints = index.size();
+  const std::vector<double> spacing = LocalSpacings(index, std::max<std::size_t>(1, options.spacingNeighbours));
+  {
+    std::vector<double> copy = spacing;
+    q.medianSpacing = Median(copy);
+  }
+  const double infinity = std::numeric_limits<double>::infinity();
+
+  for (const auto& loop : BorderLoops(m))
+  {
+    HoleLoop h;
+    h.edges = loop.size();
+    Vec3 c = Vec3::Zero();
+    std::vector<double> spacings;
+    for (std::size_t i = 0; i < loop.size(); ++i)
+    {
+      const Vec3& v = m.points[loop[i]];
+      c += v / static_cast<double>(loop.size());
+      h.length += (m.points[loop[(i + 1) % loop.size()]] - v).norm();
+      if (!index.empty())
+      {
+        spacings.push_back(spacing[index.nearest(v).first]);
+      }
+    }
+    std::copy(c.data(), c.data() + 3, h.centre);
+    h.spacing = Median(spacings);
+    h.cloudGap = index.empty() ? infinity : std::sqrt(index.nearest(c).second);
+    h.small = !index.empty() && h.length < options.smallHoleLength * h.spacing &&
+      h.cloudGap <= options.holeCentreGap * h.spacing;
+    q.smallHoles += h.small ? 1 : 0;
+    q.smallHoleEdges += h.small ? h.edges : 0;
+    q.loops.push_back(h);
+  }
+  std::stable_sort(
+    q.loops.begin(), q.loops.end(), [](const HoleLoop& a, const HoleLoop& b) { return a.edges > b.edges; });
+
+  if (!m.triangles.empty())
+  {
+    const std::vector<Vec3> samples = SampleArea(m, options.samples);
+    std::atomic<std::size_t> far{ 0 };
+    vtkSMPTools::For(0, static_cast<vtkIdType>(samples.size()), [&](vtkIdType begin, vtkIdType end) {
+      std::size_t local = 0;
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        if (index.empty())
+        {
+          ++local;
+          continue;
+        }
+        const auto [j, d2] = index.nearest(samples[static_cast<std::size_t>(i)]);
+        const double limit = options.farDistance * spacing[j];
+        local += d2 > limit * limit ? 1 : 0;
+      }
+      far += local;
+    });
+    q.farShare = samples.empty() ? 0.0 : static_cast<double>(far.load()) / static_cast<double>(samples.size());
+  }
+  return q;
+}
+
+std::string DescribeWithoutReference(const ReferenceFreeQuality& q, double unit, const char* unitName)
+{
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(1);
+  s << "triangles " << q.triangles << ", pieces " << q.components << " (largest " << 100.0 * q.largestComponentShare
+    << "% of the area), boundary edges " << q.boundaryEdges << ", non-manifold edges " << q.nonManifoldEdges << "\n";
+  s.precision(3);
+  s << "cloud " << q.cloudPoints << " points, median local spacing " << q.medianSpacing / unit << " " << unitName << "\n";
+  s.precision(1);
+  s << "boundary loops " << q.loops.size() << ", small holes " << q.smallHoles << " (" << q.smallHoleEdges
+    << " edges), far area " << 100.0 * q.farShare << "%\n";
+  std::size_t listed = 0;
+  for (const HoleLoop& h : q.loops)
+  {
+    // The longest ones say where the mesher fails; a long list says no more.
+    if (h.small && ++listed > 20)
+    {
+      s << "  ... and " << q.smallHoles - 20 << " smaller small holes\n";
+      break;
+    }
+    if (h.small)
+    {
+      s << "  small hole: " << h.edges << " edges, " << h.length / h.spacing << " spacings around, at (" << h.centre[0] / unit
+        << ", " << h.centre[1] / unit << ", " << h.centre[2] / unit << ") " << unitName << ", nearest point "
+        << h.cloudGap / h.spacing << " spacings from its centre\n";
+    }
+  }
   return s.str();
 }
 

@@ -9,6 +9,10 @@
  * - spurious: the share of the mesh's area farther than a distance from every cloud point;
  * - topology: pieces, the largest piece's share of the area, boundary and non-manifold edges
  *   (pss::countTopology).
+ *
+ * Without a reference surface (a real scan), MeasureWithoutReference judges a mesh by its cloud
+ * alone: topology, small holes (boundary loops a few points across where the scan has data) and
+ * far area (mesh the cloud does not support), all in units of the cloud's local point spacing.
  */
 #pragma once
 
@@ -96,5 +100,57 @@ MeshQuality MeasureMesh(vtkPolyData* mesh, vtkPolyData* reference, vtkPoints* cl
 
 /// One line per figure, for humans and for benchmarks/README.md (distances in @p unit, e.g. 1e-6 for um).
 std::string Describe(const MeshQuality& q, double unit, const char* unitName);
+
+struct ReferenceFreeOptions
+{
+  std::size_t samples = 200000;  ///< points spread over the mesh's area for the far share
+  std::size_t spacingNeighbours = 10; ///< a point's local spacing: median nearest-neighbour distance of this many neighbours
+  double smallHoleLength = 40.0; ///< a small hole's loop is shorter than this many local spacings
+  double holeCentreGap = 2.0;    ///< ... and has a cloud point within this many of its centre
+  double farDistance = 3.0;      ///< mesh farther than this many local spacings from every cloud point is far
+};
+
+/// One boundary loop, measured against the cloud.
+struct HoleLoop
+{
+  std::size_t edges = 0;
+  double length = 0.0;      ///< sum of its edges' lengths
+  double spacing = 0.0;     ///< local spacing: median of its vertices' nearest cloud points' spacings
+  double centre[3] = { 0.0, 0.0, 0.0 }; ///< mean of its vertices
+  double cloudGap = 0.0;    ///< distance from the centre to the nearest cloud point
+  bool small = false;       ///< length < smallHoleLength spacings and cloudGap <= holeCentreGap spacings
+};
+
+struct ReferenceFreeQuality
+{
+  vtkIdType triangles = 0;
+  double area = 0.0;
+  std::size_t components = 0;
+  double largestComponentShare = 0.0;
+  std::size_t boundaryEdges = 0;
+  std::size_t nonManifoldEdges = 0;
+  std::size_t cloudPoints = 0;     ///< finite cloud points used
+  double medianSpacing = 0.0;      ///< median of the cloud points' local spacings
+  std::vector<HoleLoop> loops;     ///< every boundary loop, longest first (in edges)
+  std::size_t smallHoles = 0;      ///< loops that are small holes
+  std::size_t smallHoleEdges = 0;  ///< their edges
+  double farShare = 0.0;           ///< share of the area farther than farDistance local spacings from the cloud
+};
+
+/**
+ * Measures triangle mesh @p mesh against its @p cloud alone (non-finite points are left out). A
+ * cloud point's local spacing is the median, over its spacingNeighbours nearest points (itself
+ * included), of their distances to their nearest other point (duplicates skipped): a robust
+ * "distance to the next sample" that follows the density across a scan (a depth frame's spacing
+ * grows with depth). A boundary loop is a small hole when it is shorter than smallHoleLength local
+ * spacings (the median spacing of the cloud points nearest its vertices) and a cloud point lies
+ * within holeCentreGap of those spacings of its centre: the scan has data there, so the hole is
+ * the mesher's. The far share samples the area evenly (as the spurious share does) and counts the
+ * samples farther than farDistance times the nearest cloud point's spacing from it.
+ */
+ReferenceFreeQuality MeasureWithoutReference(vtkPolyData* mesh, vtkPoints* cloud, const ReferenceFreeOptions& options);
+
+/// The figures of MeasureWithoutReference and its 20 longest small holes, for humans (lengths in @p unit).
+std::string DescribeWithoutReference(const ReferenceFreeQuality& q, double unit, const char* unitName);
 
 }

@@ -10,12 +10,20 @@
  * own holes (half its vertices within 3 H of REFERENCE's border), at a gap of the scan (no CLOUD
  * point within H of its centre; H = the mesher's MaxDistance, 1 h), or other (ClassifyBoundary),
  * and lists them in mm (for files in metres). Meshes: .vtp .ply .stl .obj.
+ *
+ * pss-mesh-metrics MESH CLOUD --no-reference [--unit U]
+ *
+ * Without a reference surface (a real scan): topology, the boundary loops that are small holes
+ * (shorter than 40 local point spacings, with CLOUD points within 2 spacings of their centre) and
+ * the far area (mesh farther than 3 local spacings from every CLOUD point): MeasureWithoutReference.
+ * CLOUD may also be a .pcd file (its NaN pixels are left out).
  */
 #include "MeshMetrics.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkNew.h"
 #include "vtkOBJReader.h"
+#include "vtkPCDReader.h"
 #include "vtkPLYReader.h"
 #include "vtkPolyData.h"
 #include "vtkSMPTools.h"
@@ -30,6 +38,10 @@
 
 namespace
 {
+
+const char* const Usage = "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U] "
+                          "[--loops H]\n"
+                          "       pss-mesh-metrics MESH CLOUD --no-reference [--unit U]\n";
 
 vtkSmartPointer<vtkPolyData> Read(const std::string& path)
 {
@@ -62,9 +74,15 @@ vtkSmartPointer<vtkPolyData> Read(const std::string& path)
     r->SetFileName(path.c_str());
     reader = r;
   }
+  else if (endsWith(".pcd"))
+  {
+    auto r = vtkSmartPointer<vtkPCDReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
   else
   {
-    std::cerr << "pss-mesh-metrics: unknown format of " << path << " (use .vtp .ply .stl .obj)\n";
+    std::cerr << "pss-mesh-metrics: unknown format of " << path << " (use .vtp .ply .stl .obj, or .pcd for a cloud)\n";
     std::exit(1);
   }
   reader->Update();
@@ -85,6 +103,7 @@ int main(int argc, char** argv)
   pss_metrics::MetricOptions options;
   double unit = 1e-6;
   double loops = 0.0; // > 0: classify the boundary loops, with this gap distance (MaxDistance, 1 h)
+  bool noReference = false;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -104,17 +123,35 @@ int main(int argc, char** argv)
       unit = value();
     else if (a == "--loops")
       loops = value();
+    else if (a == "--no-reference")
+      noReference = true;
     else if (a == "--help" || a == "-h")
     {
-      std::cout << "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U] [--loops H]\n";
+      std::cout << Usage;
       return 0;
     }
     else
       positional.push_back(a);
   }
+  if (noReference)
+  {
+    if (positional.size() != 2)
+    {
+      std::cerr << Usage;
+      return 2;
+    }
+    vtkSMPTools::SetBackend("STDThread");
+    vtkSmartPointer<vtkPolyData> mesh = Read(positional[0]);
+    vtkSmartPointer<vtkPolyData> cloud = Read(positional[1]);
+    const pss_metrics::ReferenceFreeQuality q =
+      pss_metrics::MeasureWithoutReference(mesh, cloud->GetPoints(), pss_metrics::ReferenceFreeOptions());
+    // Spacings of scans in metres are millimetres: shown in mm, else in the files' units.
+    std::cout << pss_metrics::DescribeWithoutReference(q, unit == 1e-6 ? 1e-3 : unit, unit == 1e-6 ? "mm" : "units");
+    return 0;
+  }
   if (positional.size() < 2 || positional.size() > 3)
   {
-    std::cerr << "usage: pss-mesh-metrics MESH REFERENCE [CLOUD] [--spurious D] [--threshold T] [--unit U] [--loops H]\n";
+    std::cerr << Usage;
     return 2;
   }
   vtkSMPTools::SetBackend("STDThread");

@@ -225,6 +225,7 @@ pss("generate", "--scene", "sphere", "--dimension", 3, "--count", 300, "--size",
 pss("generate", "--scene", "corner", "--count", 120, "--corner-angle", 75, "--size", 50, "--noise", 0.5, "-o", path("corner.vtp"))
 pss("generate", "--scene", "two-sheets", "--dimension", 3, "--count", 200, "--gap", 4, "--size", 30, "-o", path("sheets.vtp"))
 pss("generate", "-o", path("cloud_default.vtp"))
+pss("generate", "--scene", "depth-camera", "--image", "160x120", "--depth-noise", 0.002, "--seed", 4, "-o", path("depth.vtp"))
 
 source = P["PointSetSurfaceCloudSource"](Scene="Noisy Curve", NumberOfPoints=400, Size=100, Noise=3, Seed=7)
 compare("CloudSource noisy-curve", fetch(source), read("cloud.vtp"), PASSED, [])
@@ -235,6 +236,9 @@ compare("CloudSource corner", fetch(source), read("corner.vtp"), PASSED, [])
 source = P["PointSetSurfaceCloudSource"](Scene="Two Sheets", Dimension="3D", NumberOfPoints=200, SheetGap=4, Size=30)
 compare("CloudSource two-sheets", fetch(source), read("sheets.vtp"), PASSED, [])
 compare("CloudSource defaults", fetch(P["PointSetSurfaceCloudSource"]()), read("cloud_default.vtp"), PASSED, [])
+source = P["PointSetSurfaceCloudSource"](Scene="Depth Camera", ImageWidth=160, ImageHeight=120, DepthNoise=0.002, Seed=4)
+compare("CloudSource depth-camera", fetch(source), read("depth.vtp"), PASSED + ["Pixel", "SurfaceId", "NoiseSigma"], [],
+        ["GridDimensions", "Viewpoint"])
 
 cloud = reader("cloud.vtp")
 starts = reader("starts.vtp")

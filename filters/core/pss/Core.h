@@ -5,6 +5,7 @@
  */
 #pragma once
 
+#include "pss/DepthCamera.h"
 #include "pss/DirectionRulesAndEnergies.h"
 #include "pss/Domain.h"
 #include "pss/ExtremalSurface.h"

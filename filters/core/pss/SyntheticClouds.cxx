@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 
@@ -21,7 +22,8 @@ struct SceneName
 
 constexpr SceneName SceneNames[] = { { Scene::Line, "line" }, { Scene::Circle, "circle" },
   { Scene::Corner, "corner" }, { Scene::NoisyCurve, "noisy-curve" }, { Scene::Plane, "plane" },
-  { Scene::Sphere, "sphere" }, { Scene::TwoSheets, "two-sheets" } };
+  { Scene::Sphere, "sphere" }, { Scene::TwoSheets, "two-sheets" },
+  { Scene::DepthCamera, "depth-camera" } };
 
 // std::normal_distribution differs between standard libraries; this does not.
 class PortableRandom
@@ -133,6 +135,8 @@ Vec3 shapePoint(const CloudSpec& s, PortableRandom& rng, double& noiseScale)
       return flat ? Vec3(s.size * (rng.uniform() - 0.5), level, 0.0)
                   : Vec3(s.size * (rng.uniform() - 0.5), s.size * (rng.uniform() - 0.5), level);
     }
+    case Scene::DepthCamera:
+      break; // generateDepthFrame
   }
   return Vec3::Zero();
 }
@@ -171,6 +175,11 @@ bool parseScene(const std::string& text, Scene& out)
 
 void CloudSpec::validate() const
 {
+  if (scene == Scene::DepthCamera)
+  {
+    camera.validate(); // the other fields do not apply to it
+    return;
+  }
   if (dimension != 2 && dimension != 3)
   {
     throw std::invalid_argument("the cloud dimension must be 2 or 3");
@@ -199,6 +208,10 @@ void CloudSpec::validate() const
 
 std::vector<Vec3> generateCloud(const CloudSpec& spec)
 {
+  if (spec.scene == Scene::DepthCamera)
+  {
+    return generateDepthFrame(spec).points;
+  }
   spec.validate();
   PortableRandom rng(spec.seed);
   std::vector<Vec3> points;
@@ -224,6 +237,10 @@ std::vector<Vec3> generateCloud(const CloudSpec& spec)
 
 double distanceToShape(const CloudSpec& s, const Vec3& xIn)
 {
+  if (s.scene == Scene::DepthCamera)
+  {
+    return distanceToDepthScene(xIn);
+  }
   const bool flat = s.dimension == 2;
   const Vec3 x = flat ? Vec3(xIn.x(), xIn.y(), 0.0) : xIn;
   const double half = 0.5 * s.size;
@@ -282,6 +299,8 @@ double distanceToShape(const CloudSpec& s, const Vec3& xIn)
       return flat ? segmentDistance(x, Vec3(-half, 0, 0), Vec3(half, 0, 0)) : squareDistance(x, half, 0.0);
     case Scene::Sphere:
       return std::abs(x.norm() - half);
+    case Scene::DepthCamera:
+      break; // handled above
     case Scene::TwoSheets:
     {
       const double g = 0.5 * s.gap;
@@ -312,6 +331,47 @@ CurveFrame noisyCurveFrame(const CloudSpec& spec, double u)
   f.normal = Vec3(-t.y(), t.x(), 0.0);
   f.sigma = spec.noise * noisyCurveNoiseScale(u);
   return f;
+}
+
+DepthFrame generateDepthFrame(const CloudSpec& spec)
+{
+  if (spec.scene != Scene::DepthCamera)
+  {
+    throw std::invalid_argument("generateDepthFrame: the scene is not the depth camera");
+  }
+  const DepthCameraSpec& camera = spec.camera;
+  const std::vector<DepthPixelTruth> truth = traceDepthImage(camera); // validates the camera
+  DepthFrame frame;
+  frame.width = camera.width;
+  frame.height = camera.height;
+  frame.focalLength = camera.focalLength();
+  frame.points.assign(truth.size(), Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+  frame.pixels.resize(truth.size());
+  PortableRandom rng(spec.seed);
+  for (std::size_t k = 0; k < truth.size(); ++k)
+  {
+    // Drawn for every pixel, so that a pixel's noise does not depend on which others are valid.
+    const double draw = rng.normal();
+    DepthPixel& pixel = frame.pixels[k];
+    pixel.row = static_cast<int>(k / static_cast<std::size_t>(camera.width));
+    pixel.column = static_cast<int>(k % static_cast<std::size_t>(camera.width));
+    pixel.surface = truth[k].surface;
+    pixel.state = truth[k].state;
+    const double z = truth[k].depth;
+    pixel.sigma = pixel.surface == DepthSurface::None ? 0.0 : camera.depthNoise * z * z;
+    if (pixel.state != PixelState::Valid)
+    {
+      continue;
+    }
+    const double measured = camera.quantizeDepth(z + pixel.sigma * draw);
+    if (!(measured > 0.0) || !std::isfinite(measured))
+    {
+      pixel.state = PixelState::OutOfRange;
+      continue;
+    }
+    frame.points[k] = measured * camera.pixelRay(pixel.row, pixel.column);
+  }
+  return frame;
 }
 
 } // namespace pss

@@ -397,7 +397,8 @@ TEST(FilterBadInput, SourceRejectsAbsurdSettings)
   source->SetCornerAngle(200.0);
   EXPECT_LT(source->GetCornerAngle(), 180.0);
   source->SetScene(42);
-  EXPECT_EQ(source->GetScene(), vtkPointSetSurfaceCloudSource::TWO_SHEETS);
+  EXPECT_EQ(source->GetScene(), vtkPointSetSurfaceCloudSource::DEPTH_CAMERA);
+  source->SetSceneToTwoSheets();
   source->SetSize(10.0);
   source->Update();
   EXPECT_TRUE(log->Errors.empty());

@@ -1,0 +1,151 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// `pss generate --scene depth-camera`: an organized 640 x 480 frame, written as PCD with its
+// WIDTH, HEIGHT and VIEWPOINT and as .vtp with the same field data, that pss reads back (its NaN
+// pixels skipped and counted) and orients n toward the sensor from.
+#include "CliTestUtilities.h"
+
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkXMLPolyDataReader.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+using namespace pss_cli_test;
+
+namespace
+{
+
+vtkSmartPointer<vtkPolyData> ReadFrame(const std::string& path)
+{
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
+// The header lines of a PCD file, keyword -> the rest of the line, up to DATA.
+std::map<std::string, std::string> PcdHeader(const std::string& path)
+{
+  std::map<std::string, std::string> header;
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  while (std::getline(in, line))
+  {
+    if (line.empty() || line[0] == '#')
+    {
+      continue;
+    }
+    const auto space = line.find(' ');
+    const std::string key = line.substr(0, space);
+    header[key] = space == std::string::npos ? "" : line.substr(space + 1);
+    if (key == "DATA")
+    {
+      break;
+    }
+  }
+  return header;
+}
+
+} // namespace
+
+TEST(Cli, GenerateDepthCamera)
+{
+  const std::string pcd = TempPath("depth-camera.pcd");
+  const std::string vtp = TempPath("depth-camera.vtp");
+  const auto t0 = std::chrono::steady_clock::now();
+  CommandResult r = RunCommand(Pss() + " generate --scene depth-camera -o " + pcd);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::printf("[measured] pss generate --scene depth-camera -o frame.pcd: %.2f s\n", seconds);
+  std::map<std::string, std::string> header = PcdHeader(pcd);
+  EXPECT_EQ(header["WIDTH"], "640");
+  EXPECT_EQ(header["HEIGHT"], "480");
+  EXPECT_EQ(header["POINTS"], "307200");
+  EXPECT_EQ(header["VIEWPOINT"], "0 0 0 1 0 0 0");
+  EXPECT_NE(header["FIELDS"].find("SurfaceId"), std::string::npos) << header["FIELDS"];
+  EXPECT_NE(header["FIELDS"].find("NoiseSigma"), std::string::npos) << header["FIELDS"];
+
+  r = RunCommand(Pss() + " generate --scene depth-camera -o " + vtp);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  vtkSmartPointer<vtkPolyData> frame = ReadFrame(vtp);
+  ASSERT_EQ(frame->GetNumberOfPoints(), 307200);
+  vtkDataArray* grid = frame->GetFieldData()->GetArray("GridDimensions");
+  vtkDataArray* viewpoint = frame->GetFieldData()->GetArray("Viewpoint");
+  ASSERT_NE(grid, nullptr);
+  ASSERT_NE(viewpoint, nullptr);
+  EXPECT_EQ(grid->GetComponent(0, 0), 640);
+  EXPECT_EQ(grid->GetComponent(1, 0), 480);
+  EXPECT_EQ(viewpoint->GetNumberOfValues(), 7);
+  for (const char* name : { "Pixel", "SurfaceId", "NoiseSigma", "DistanceToShape" })
+  {
+    EXPECT_NE(frame->GetPointData()->GetArray(name), nullptr) << name;
+  }
+
+  // Start points on the measured pixels; the projection reads the PCD file back.
+  long long nan = 0;
+  std::ostringstream starts;
+  starts.precision(17);
+  starts << "x,y,z\n";
+  int count = 0;
+  for (vtkIdType i = 0; i < frame->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    frame->GetPoint(i, p);
+    if (!std::isfinite(p[0]))
+    {
+      ++nan;
+    }
+    else if (i % 1999 == 0)
+    {
+      starts << p[0] << "," << p[1] << "," << p[2] << "\n";
+      ++count;
+    }
+  }
+  const std::string startPath = TempPath("depth-camera-starts.csv");
+  std::ofstream(startPath) << starts.str();
+  const std::string projected = TempPath("depth-camera-projected.vtp");
+  r = RunCommand(Pss() + " project " + pcd + " --start " + startPath + " --variant com --threads 2 -o " + projected);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find(std::to_string(nan) + " of its 307200 points have NaN"), std::string::npos) << r.output;
+  vtkSmartPointer<vtkPolyData> out = ReadFrame(projected);
+  ASSERT_EQ(out->GetNumberOfPoints(), count);
+  vtkDataArray* normals = out->GetPointData()->GetArray("Normal");
+  ASSERT_NE(normals, nullptr);
+  int defined = 0, toward = 0;
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    double n[3], x[3];
+    normals->GetTuple(i, n);
+    out->GetPoint(i, x);
+    if (std::isfinite(n[0]))
+    {
+      ++defined;
+      toward += n[0] * x[0] + n[1] * x[1] + n[2] * x[2] < 0.0 ? 1 : 0; // n . (sensor - x) > 0
+    }
+  }
+  EXPECT_GT(defined, count * 9 / 10);
+  EXPECT_EQ(toward, defined) << "n faces the file's viewpoint";
+
+  // A smaller image, and images pss refuses.
+  r = RunCommand(Pss() + " generate --scene depth-camera --image 160x120 --depth-noise 0 -o " + vtp);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(ReadFrame(vtp)->GetNumberOfPoints(), 160 * 120);
+  for (const char* bad : { "0x5", "640", "640x480x3", "20000x10", "axb" })
+  {
+    r = RunCommand(Pss() + " generate --scene depth-camera --image " + bad + " -o " + vtp);
+    EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("--image expects"), std::string::npos) << r.output;
+  }
+}
