@@ -104,7 +104,7 @@ std::string Describe(const MeshQuality& q, double unit, const char* unitName);
 struct ReferenceFreeOptions
 {
   std::size_t samples = 200000;  ///< points spread over the mesh's area for the far share
-  std::size_t spacingNeighbours = 10; ///< a point's local spacing: median nearest-neighbour distance of this many neighbours
+  std::size_t spacingNeighbours = 12; ///< k of a point's local spacing, d_k sqrt(pi / k), median-smoothed
   double smallHoleLength = 40.0; ///< a small hole's loop is shorter than this many local spacings
   double holeCentreGap = 2.0;    ///< ... and has a cloud point within this many of its centre
   double farDistance = 3.0;      ///< mesh farther than this many local spacings from every cloud point is far
@@ -139,10 +139,11 @@ struct ReferenceFreeQuality
 
 /**
  * Measures triangle mesh @p mesh against its @p cloud alone (non-finite points are left out). A
- * cloud point's local spacing is the median, over its spacingNeighbours nearest points (itself
- * included), of their distances to their nearest other point (duplicates skipped): a robust
- * "distance to the next sample" that follows the density across a scan (a depth frame's spacing
- * grows with depth). A boundary loop is a small hole when it is shorter than smallHoleLength local
+ * cloud point's local spacing comes from the density around it: d_k sqrt(pi / k), with d_k its
+ * distance to the k-th nearest other point (k = spacingNeighbours), the side of the square each
+ * sample covers (a square grid of spacing s gives 1.02 s), median-smoothed over its k nearest. It
+ * follows the density across a scan, also where a depth frame's quantization puts the points in
+ * stripes (their nearest neighbours then sit in the same stripe, far closer than the stripes). A boundary loop is a small hole when it is shorter than smallHoleLength local
  * spacings (the median spacing of the cloud points nearest its vertices) and a cloud point lies
  * within holeCentreGap of those spacings of its centre: the scan has data there, so the hole is
  * the mesher's. The far share samples the area evenly (as the spurious share does) and counts the

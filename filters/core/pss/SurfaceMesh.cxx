@@ -685,7 +685,7 @@ std::vector<double> SurfaceMesher::holeValues() const
   for (std::size_t j = 0; j < HoleEvidence.size(); ++j)
   {
     putEvidence(o, HoleEvidence[j]);
-    *o++ = HoleCloudSqDist[j];
+    *o++ = HoleCloudGapSq[j];
   }
   return out;
 }
@@ -696,7 +696,7 @@ void SurfaceMesher::setHoleValues(const std::vector<double>& values)
   for (std::size_t j = 0; j < HoleEvidence.size(); ++j)
   {
     takeEvidence(in, HoleEvidence[j]);
-    HoleCloudSqDist[j] = *in++;
+    HoleCloudGapSq[j] = *in++;
   }
 }
 

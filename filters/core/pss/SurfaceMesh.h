@@ -296,7 +296,7 @@ private:
   std::vector<std::vector<std::uint32_t>> Holes; ///< findHoles(): small holes' vertex loops
   std::vector<Vec3> HoleCentres;                 ///< their vertices' centroids
   std::vector<DomainEvidence> HoleEvidence;      ///< evaluateHole(): each centre's projection (more than 3 edges)
-  std::vector<double> HoleCloudSqDist;           ///< and its squared distance to the cloud
+  std::vector<double> HoleCloudGapSq;           ///< and its squared distance to the cloud, in local h^2
   MeshStatistics Statistics;
 };
 

@@ -623,7 +623,7 @@ void SurfaceMesher::findHoles(const SurfaceMesh& mesh)
     }
   }
   HoleEvidence.assign(Holes.size(), DomainEvidence{});
-  HoleCloudSqDist.assign(Holes.size(), 0.0);
+  HoleCloudGapSq.assign(Holes.size(), 0.0);
 }
 
 void SurfaceMesher::evaluateHole(std::size_t j, Workspace& ws)
@@ -634,9 +634,11 @@ void SurfaceMesher::evaluateHole(std::size_t j, Workspace& ws)
     HoleEvidence[j] = classifyStart(*Surface, centre, Options.projection, Options.domain, ws, Normals.get());
   }
   const PointIndex& index = Surface->index();
-  const double sqDist = index.nearest(centre).second;
+  const auto [nearest, sqDist] = index.nearest(centre);
   noteReach(index, index.restrict(centre), sqDist, ws);
-  HoleCloudSqDist[j] = sqDist;
+  // In units of the nearest point's own scale when each point has one, as the domain test does.
+  const double local = index.hasScales() ? index.scale(nearest) : Frame.h;
+  HoleCloudGapSq[j] = sqDist / (local * local);
 }
 
 void SurfaceMesher::closeHoles(SurfaceMesh& mesh)
@@ -667,7 +669,6 @@ void SurfaceMesher::closeHoles(SurfaceMesh& mesh)
   }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  const double h = Frame.h;
   Pieces pieces = piecesOf(mesh.triangles, mesh.points);
   const auto largest = static_cast<std::size_t>(
     std::max_element(pieces.measure.begin(), pieces.measure.end()) - pieces.measure.begin());
@@ -725,7 +726,7 @@ void SurfaceMesher::closeHoles(SurfaceMesh& mesh)
       // inside out (the triangles around it overlap it by a fraction of a cell) or a pleat of the
       // contour twisted it, and any closing lies nearer the surface than the hole. A smaller
       // piece's outline walks the wrong way round too, but closing it would make a closed lens.
-      const bool scanHasData = HoleCloudSqDist[j] <= Options.domain.maxDistance * h * Options.domain.maxDistance * h;
+      const bool scanHasData = HoleCloudGapSq[j] <= Options.domain.maxDistance * Options.domain.maxDistance;
       const bool anyFold = scanHasData && pieces.sets.find(hole[0]) == largest;
       std::vector<std::array<std::uint32_t, 3>> folding;
       if (anyFold)

@@ -87,6 +87,10 @@ pss_metrics::ReferenceFreeQuality Measure(vtkPolyData* mesh, vtkPoints* cloud)
   return pss_metrics::MeasureWithoutReference(mesh, cloud, options);
 }
 
+// The local spacing of a unit square grid: its 12th neighbour is 2 away, and 2 sqrt(pi / 12) is the
+// side of the square each sample covers by that count.
+const double kGridSpacing = 2.0 * std::sqrt(M_PI / 12.0);
+
 // Cells (i, j) with lo <= i, j < hi.
 std::function<bool(int, int)> Block(int lo, int hi)
 {
@@ -107,7 +111,7 @@ TEST(MeshMetricsWithoutReference, WholeGridIsClean)
   EXPECT_DOUBLE_EQ(q.largestComponentShare, 1.0);
   EXPECT_EQ(q.boundaryEdges, 120u);
   EXPECT_EQ(q.cloudPoints, 31u * 31u);
-  EXPECT_DOUBLE_EQ(q.medianSpacing, 1.0);
+  EXPECT_DOUBLE_EQ(q.medianSpacing, kGridSpacing);
   ASSERT_EQ(q.loops.size(), 1u) << "the square's border";
   EXPECT_NEAR(q.loops[0].length, 120.0, 1e-9);
   EXPECT_FALSE(q.loops[0].small) << "120 spacings around";
@@ -131,7 +135,7 @@ TEST(MeshMetricsWithoutReference, SmallHoleWhereTheScanHasData)
   EXPECT_TRUE(hole.small);
   EXPECT_EQ(hole.edges, 8u);
   EXPECT_NEAR(hole.length, 8.0, 1e-12);
-  EXPECT_DOUBLE_EQ(hole.spacing, 1.0);
+  EXPECT_DOUBLE_EQ(hole.spacing, kGridSpacing);
   EXPECT_NEAR(hole.centre[0], 15.0, 1e-12);
   EXPECT_NEAR(hole.centre[1], 15.0, 1e-12);
   EXPECT_NEAR(hole.cloudGap, 0.0, 1e-12) << "the grid point (15, 15) is in the cloud";
@@ -203,19 +207,31 @@ TEST(MeshMetricsWithoutReference, MeshLiftedFarFromItsCloudIsAllFar)
   AddGrid(points, triangles, 30, 0.0, 10.0);
   const auto q = Measure(Mesh(points, triangles), GridCloud(30));
   EXPECT_EQ(q.farShare, 1.0);
-  // Lifted by 2.9 spacings it is all within 3 of some point; by 3.1, none of it is.
+  // Over a cloud that reaches 5 beyond the mesh on every side (so that every point near it has a
+  // whole grid around it): lifted by 2.9 spacings it is all within 3 of some point; by 3.1, none
+  // of it is.
+  auto wide = vtkSmartPointer<vtkPoints>::New();
+  for (int j = -5; j <= 35; ++j)
+  {
+    for (int i = -5; i <= 35; ++i)
+    {
+      wide->InsertNextPoint(i, j, 0.0);
+    }
+  }
   vtkNew<vtkPoints> near;
   vtkNew<vtkCellArray> nearTriangles;
-  AddGrid(near, nearTriangles, 30, 0.0, 2.9);
-  EXPECT_EQ(Measure(Mesh(near, nearTriangles), GridCloud(30)).farShare, 0.0);
+  AddGrid(near, nearTriangles, 30, 0.0, 2.9 * kGridSpacing);
+  EXPECT_EQ(Measure(Mesh(near, nearTriangles), wide).farShare, 0.0);
   vtkNew<vtkPoints> beyond;
   vtkNew<vtkCellArray> beyondTriangles;
-  AddGrid(beyond, beyondTriangles, 30, 0.0, 3.1);
-  EXPECT_EQ(Measure(Mesh(beyond, beyondTriangles), GridCloud(30)).farShare, 1.0);
+  AddGrid(beyond, beyondTriangles, 30, 0.0, 3.1 * kGridSpacing);
+  EXPECT_EQ(Measure(Mesh(beyond, beyondTriangles), wide).farShare, 1.0);
 }
 
-// The cloud covers x <= 15 of a 30 x 30 mesh: the mesh beyond x = 18 (three spacings past the
-// last column of points) is far, 12 / 30 of the area up to the sampling.
+// The cloud covers x <= 15 of a 30 x 30 mesh: the mesh beyond three spacings past the last column
+// of points is far. Those points see fewer neighbours, so their spacing lies between the grid's
+// and sqrt(5) sqrt(pi / 12) (their 12th neighbour is sqrt(5) away): the far share is between
+// (15 - 3 x 1.144) / 30 and (15 - 3 x 1.023) / 30, up to the sampling.
 TEST(MeshMetricsWithoutReference, MeshPastTheCloudsEdge)
 {
   vtkNew<vtkPoints> points;
@@ -223,7 +239,9 @@ TEST(MeshMetricsWithoutReference, MeshPastTheCloudsEdge)
   AddGrid(points, triangles, 30, 0.0, 0.0);
   vtkSmartPointer<vtkPoints> cloud = GridCloud(30, [](int i, int) { return i > 15; });
   const auto q = Measure(Mesh(points, triangles), cloud);
-  EXPECT_NEAR(q.farShare, 0.4, 0.01);
+  const double edgeSpacing = std::sqrt(5.0) * std::sqrt(M_PI / 12.0);
+  EXPECT_GE(q.farShare, (15.0 - 3.0 * edgeSpacing) / 30.0 - 0.005);
+  EXPECT_LE(q.farShare, (15.0 - 3.0 * kGridSpacing) / 30.0 + 0.005);
   // Non-finite cloud points (a depth frame's invalid pixels) are left out, not counted.
   cloud->InsertNextPoint(std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0);
   const auto withNaN = Measure(Mesh(points, triangles), cloud);

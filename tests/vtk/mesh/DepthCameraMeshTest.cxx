@@ -1,0 +1,222 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * The mesher with every default on a simulated depth-camera frame (vtkPointSetSurfaceCloudSource's
+ * DEPTH_CAMERA, seed 1: a table, a box, a cylinder and a sphere seen by a structured-light sensor
+ * with depth noise sigma0 z^2 and disparity quantized to 1/8 pixel), measured against the exact
+ * scene (pss::distanceToDepthScene, pss::traceDepthImage):
+ * - every surface that at least 2,000 pixels see is meshed (a mesh vertex near nearly all its points);
+ * - the vertices lie on the true surfaces: their median distance is at most half the sensor's
+ *   noise sigma at their depth;
+ * - no triangle bridges a depth discontinuity: a triangle from a foreground object to the
+ *   background would cross the empty space between them, so every triangle's centre must lie
+ *   within 3 h (the median scale) of a true surface;
+ * - boundary edges only where the frame ends: each lies, in the image, within 3 h of the frame
+ *   border, of a pixel without a measurement (no hit, out of range, projector shadow) or of a
+ *   depth discontinuity (4-neighbour pixels whose true depths differ by more than 3%).
+ */
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPointSetSurfaceCloudSource.h"
+#include "vtkPointSetSurfaceMesher.h"
+#include "vtkPolyData.h"
+
+#include "pss/DepthCamera.h"
+#include "pss/PointIndex.h"
+#include "vtkPointSetSurface.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <vector>
+
+namespace
+{
+
+using pss::Vec3;
+
+double Median(std::vector<double> values)
+{
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
+
+Vec3 PointOf(vtkPolyData* pd, vtkIdType i)
+{
+  double x[3];
+  pd->GetPoint(i, x);
+  return Vec3(x[0], x[1], x[2]);
+}
+
+// Why a boundary edge may be there, read from the true image around a pixel.
+struct ImageTruth
+{
+  pss::DepthCameraSpec camera;
+  std::vector<pss::DepthPixelTruth> pixels;
+
+  const pss::DepthPixelTruth& at(int row, int column) const
+  {
+    return pixels[static_cast<std::size_t>(row) * static_cast<std::size_t>(camera.width) +
+      static_cast<std::size_t>(column)];
+  }
+
+  // 0: the frame border, 1: an unmeasured pixel, 2: a depth discontinuity, within @p radius
+  // pixels of (@p row, @p column); -1: none of them.
+  int reason(double row, double column, int radius) const
+  {
+    const int r0 = static_cast<int>(std::floor(row)) - radius, r1 = static_cast<int>(std::floor(row)) + radius;
+    const int c0 = static_cast<int>(std::floor(column)) - radius, c1 = static_cast<int>(std::floor(column)) + radius;
+    if (r0 < 0 || c0 < 0 || r1 >= camera.height || c1 >= camera.width)
+    {
+      return 0;
+    }
+    int found = -1;
+    for (int r = r0; r <= r1; ++r)
+    {
+      for (int c = c0; c <= c1; ++c)
+      {
+        const pss::DepthPixelTruth& p = at(r, c);
+        if (p.state != pss::PixelState::Valid)
+        {
+          return 1;
+        }
+        for (const auto& [dr, dc] : { std::pair<int, int>{ 0, 1 }, std::pair<int, int>{ 1, 0 } })
+        {
+          if (r + dr <= r1 && c + dc <= c1)
+          {
+            const pss::DepthPixelTruth& q = at(r + dr, c + dc);
+            if (q.state == pss::PixelState::Valid && std::abs(q.depth - p.depth) > 0.03 * std::min(p.depth, q.depth))
+            {
+              found = 2;
+            }
+          }
+        }
+      }
+    }
+    return found;
+  }
+};
+
+} // namespace
+
+TEST(DepthCameraMesh, MeshedWhereSeenOnTheSurfacesAndOpenOnlyAtTheFramesEdges)
+{
+  vtkNew<vtkPointSetSurfaceCloudSource> source;
+  source->SetSceneToDepthCamera();
+  source->SetSeed(1);
+  vtkNew<vtkPointSetSurfaceMesher> mesher; // every default
+  mesher->SetInputConnection(source->GetOutputPort());
+  mesher->Update();
+  vtkPolyData* frame = source->GetOutput();
+  vtkPolyData* mesh = mesher->GetOutput();
+  const double h = mesher->GetEffectiveScale();
+  ASSERT_TRUE(mesher->GetSurface()->GetUsesPointScales()) << "a sensor frame takes a scale per point";
+  ASSERT_GT(mesh->GetNumberOfPolys(), 10000);
+  const double sigma0 = source->GetDepthNoise();
+  std::cout << "frame " << frame->GetNumberOfPoints() << " pixels, median h " << h << ", mesh "
+            << mesh->GetNumberOfPoints() << " vertices, " << mesh->GetNumberOfPolys() << " triangles\n";
+
+  // On the surfaces: each vertex's distance to the scene in units of the noise at its depth.
+  std::vector<double> ratios;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    const Vec3 v = PointOf(mesh, i);
+    ratios.push_back(pss::distanceToDepthScene(v) / (sigma0 * v.z() * v.z()));
+  }
+  const double medianRatio = Median(ratios);
+  std::cout << "median vertex distance to the scene: " << medianRatio << " noise sigmas\n";
+  EXPECT_LE(medianRatio, 0.5);
+
+  // Every surface seen by 2,000 pixels or more is meshed: a mesh vertex within 1.5 h of at least
+  // 90% of its points (the grid's cells are h wide; the mesh stops short of each surface's own
+  // border by up to MaxDistance).
+  pss::PointIndex meshIndex(
+    [&] {
+      std::vector<Vec3> v;
+      for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+      {
+        v.push_back(PointOf(mesh, i));
+      }
+      return v;
+    }(),
+    3);
+  vtkDataArray* surfaceIds = frame->GetPointData()->GetArray("SurfaceId");
+  ASSERT_NE(surfaceIds, nullptr);
+  std::map<int, std::array<std::size_t, 2>> covered; // surface: {points, points near a vertex}
+  for (vtkIdType i = 0; i < frame->GetNumberOfPoints(); ++i)
+  {
+    const Vec3 p = PointOf(frame, i);
+    if (!std::isfinite(p.x()))
+    {
+      continue;
+    }
+    auto& c = covered[static_cast<int>(surfaceIds->GetComponent(i, 0))];
+    ++c[0];
+    c[1] += meshIndex.nearest(p).second <= 2.25 * h * h ? 1 : 0;
+  }
+  for (const auto& [surface, c] : covered)
+  {
+    const double share = static_cast<double>(c[1]) / static_cast<double>(c[0]);
+    std::cout << pss::depthSurfaceName(static_cast<pss::DepthSurface>(surface)) << ": " << c[0]
+              << " points, " << 100.0 * share << "% near the mesh\n";
+    if (c[0] >= 2000)
+    {
+      EXPECT_GE(share, 0.9) << pss::depthSurfaceName(static_cast<pss::DepthSurface>(surface));
+    }
+  }
+
+  // No bridge: every triangle's centre within 3 local h (the scale of the cloud point nearest to
+  // it) of a true surface. Where a surface ends, the mesh may reach past its edge by up to
+  // MaxDistance (1 local h); a bridge would cross the gap between two surfaces.
+  const pss::PointIndex* cloudIndex = mesher->GetSurface()->GetIndex();
+  ASSERT_NE(cloudIndex, nullptr);
+  double farthest = 0.0;
+  const vtkIdType* ids = nullptr;
+  vtkIdType count = 0;
+  vtkCellArray* polys = mesh->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(count, ids);)
+  {
+    const Vec3 centre = (PointOf(mesh, ids[0]) + PointOf(mesh, ids[1]) + PointOf(mesh, ids[2])) / 3.0;
+    const double local = cloudIndex->scale(cloudIndex->nearest(centre).first);
+    farthest = std::max(farthest, pss::distanceToDepthScene(centre) / local);
+  }
+  std::cout << "farthest triangle centre from the scene: " << farthest << " local h\n";
+  EXPECT_LE(farthest, 3.0);
+
+  // Boundary edges, each sorted by the first reason found around its midpoint in the image.
+  ImageTruth truth;
+  truth.pixels = pss::traceDepthImage(truth.camera);
+  std::map<std::pair<vtkIdType, vtkIdType>, int> uses;
+  for (polys->InitTraversal(); polys->GetNextCell(count, ids);)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      ++uses[{ std::min(ids[k], ids[(k + 1) % 3]), std::max(ids[k], ids[(k + 1) % 3]) }];
+    }
+  }
+  std::array<std::size_t, 4> reasons{}; // border, unmeasured, discontinuity, none
+  const double f = truth.camera.focalLength();
+  for (const auto& [edge, n] : uses)
+  {
+    if (n != 1)
+    {
+      continue;
+    }
+    const Vec3 m = 0.5 * (PointOf(mesh, edge.first) + PointOf(mesh, edge.second));
+    const double column = f * m.x() / m.z() + 0.5 * truth.camera.width;
+    const double row = f * m.y() / m.z() + 0.5 * truth.camera.height;
+    const int radius = static_cast<int>(std::ceil(3.0 * h * f / m.z()));
+    const int why = truth.reason(row, column, radius);
+    ++reasons[static_cast<std::size_t>(why < 0 ? 3 : why)];
+  }
+  std::cout << "boundary edges: " << reasons[0] << " at the frame border, " << reasons[1]
+            << " at unmeasured pixels, " << reasons[2] << " at depth discontinuities, " << reasons[3]
+            << " elsewhere\n";
+  EXPECT_EQ(reasons[3], 0u);
+}
