@@ -222,6 +222,20 @@ int vtkPointSetSurfaceMesher::RequestData(
   {
     options.viewpoint = pss::Vec3(viewpoint[0], viewpoint[1], viewpoint[2]);
   }
+  // The cloud's own normals orient each piece; in one process only, where the surface's points
+  // are the input's in its order (a distributed run's ranks hold other points).
+  vtkDataArray* cloudNormals = cloud ? cloud->GetPointData()->GetNormals() : nullptr;
+  if (!controller && cloudNormals && cloudNormals->GetNumberOfComponents() == 3 &&
+    cloudNormals->GetNumberOfTuples() == cloud->GetNumberOfPoints())
+  {
+    options.cloudNormals.resize(static_cast<std::size_t>(cloudNormals->GetNumberOfTuples()));
+    for (vtkIdType i = 0; i < cloudNormals->GetNumberOfTuples(); ++i)
+    {
+      double n[3];
+      cloudNormals->GetTuple(i, n);
+      options.cloudNormals[static_cast<std::size_t>(i)] = pss::Vec3(n[0], n[1], n[2]);
+    }
+  }
   options.cellSize = this->CellSize;
   options.band = this->Band;
   options.projectVertices = this->ProjectVertices;

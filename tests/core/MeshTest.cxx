@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -330,6 +331,45 @@ TEST(Mesh, TwoSheetsFourHApartStayApart)
       }
     }
   }
+}
+
+// The cloud's own normals orient each piece: two sheets 4 h apart, both given the normal +z. The
+// centroid's rule alone turns each sheet's n away from the middle (+z above, -z below); with the
+// normals both face +z. A normal of zero leaves the choice to the rule; a wrong count is refused.
+TEST(Mesh, CloudNormalsOrientEachPiece)
+{
+  pss::CloudSpec spec;
+  spec.scene = pss::Scene::TwoSheets;
+  spec.dimension = 3;
+  spec.size = 16.0;
+  spec.count = 5000;
+  spec.gap = 4.0;
+  const pss::PointIndex index = indexOf(spec);
+  auto zSigns = [](const pss::SurfaceMesh& mesh) {
+    std::array<std::size_t, 2> up{}; // vertices with n_z > 0 on the lower and the upper sheet
+    for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    {
+      up[mesh.points[i].z() > 0.0 ? 1 : 0] += mesh.normals[i].z() > 0.0 ? 1 : 0;
+    }
+    return up;
+  };
+  const pss::SurfaceMesh byCentroid = meshOf(index, pss::Variant::CenterOfMass, 1.0);
+  ASSERT_EQ(byCentroid.statistics.components, 2u);
+  EXPECT_EQ(zSigns(byCentroid)[0], 0u) << "the lower sheet faces down by the centroid's rule";
+  pss::MeshOptions options;
+  options.cloudNormals.assign(index.size(), Vec3(0.0, 0.0, 1.0));
+  const pss::SurfaceMesh byNormals = meshOf(index, pss::Variant::CenterOfMass, 1.0, options);
+  std::size_t lower = 0;
+  for (const Vec3& p : byNormals.points)
+  {
+    lower += p.z() < 0.0 ? 1 : 0;
+  }
+  EXPECT_EQ(zSigns(byNormals)[0], lower) << "every lower vertex faces up";
+  EXPECT_EQ(zSigns(byNormals)[1], byNormals.points.size() - lower) << "every upper vertex faces up";
+  options.cloudNormals.assign(index.size(), Vec3::Zero());
+  EXPECT_EQ(zSigns(meshOf(index, pss::Variant::CenterOfMass, 1.0, options))[0], 0u) << "zero: the rule decides";
+  options.cloudNormals.assign(index.size() - 1, Vec3(0.0, 0.0, 1.0));
+  EXPECT_THROW(meshOf(index, pss::Variant::CenterOfMass, 1.0, options), std::invalid_argument);
 }
 
 TEST(Mesh, TwoSheetsOneAndAHalfHApart)

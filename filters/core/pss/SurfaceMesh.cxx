@@ -180,6 +180,12 @@ SurfaceMesher::SurfaceMesher(const MeshFrame& frame, const MeshOptions& options)
 
 void SurfaceMesher::useSurface(const SurfaceDefinition& surface)
 {
+  const PointIndex& index = surface.index();
+  if (!Options.cloudNormals.empty() && Options.cloudNormals.size() != index.size() + index.skippedCount())
+  {
+    throw std::invalid_argument("the mesher was given " + std::to_string(Options.cloudNormals.size()) +
+      " cloud normals for " + std::to_string(index.size() + index.skippedCount()) + " points");
+  }
   Surface = &surface;
   Normals = std::make_unique<CloudNormals>(surface);
 }
@@ -319,48 +325,6 @@ void SurfaceMesher::evaluateVertex(std::size_t i, Workspace& ws)
     v.n = d.n;
     v.g = Surface->lineSample(x, d.n, ws).trueSlope();
     v.defined = std::isfinite(v.g);
-  }
-}
-
-void SurfaceMesher::orient()
-{
-  const std::size_t n = Keys.size();
-  Sign.assign(n, 0);
-  const Orientation away = Options.viewpoint ? Orientation::toward(*Options.viewpoint) : Orientation::awayFrom(Frame.centroid);
-  // Max-heap of (|n_a . n_b|, b, a): the most parallel edge out of the oriented set goes first.
-  using Edge = std::tuple<double, std::uint32_t, std::uint32_t>;
-  std::priority_queue<Edge> heap;
-  auto pushNeighbours = [&](std::size_t v) {
-    for (int k = 0; k < 2 * Dimension; ++k)
-    {
-      const std::uint32_t w = Step[k][v];
-      if (w != NoIndex && Values[w].defined && Sign[w] == 0)
-      {
-        heap.emplace(std::abs(Values[v].n.dot(Values[w].n)), w, static_cast<std::uint32_t>(v));
-      }
-    }
-  };
-  for (std::size_t seed = 0; seed < n; ++seed)
-  {
-    if (!Values[seed].defined || Sign[seed] != 0)
-    {
-      continue;
-    }
-    const Vec3& ns = Values[seed].n;
-    Sign[seed] = away.apply(ns, positionOf(Keys[seed])).dot(ns) < 0.0 ? -1 : 1;
-    pushNeighbours(seed);
-    while (!heap.empty())
-    {
-      const auto [weight, to, from] = heap.top();
-      heap.pop();
-      (void)weight;
-      if (Sign[to] != 0)
-      {
-        continue;
-      }
-      Sign[to] = static_cast<signed char>(Values[to].n.dot(Values[from].n) * Sign[from] < 0.0 ? -1 : 1);
-      pushNeighbours(to);
-    }
   }
 }
 

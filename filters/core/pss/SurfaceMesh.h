@@ -97,6 +97,11 @@ struct MeshOptions
   /// oriented toward it instead of away from the cloud's centroid (a single view sees every
   /// surface from its front).
   std::optional<Vec3> viewpoint;
+  /// The cloud's own normals (a scan's, e.g. PLY nx ny nz or PCD normal_x/y/z), one per input
+  /// point in input order (PointIndex::originalId), zero where unknown: each piece's first corner
+  /// then agrees with the normal of the cloud point nearest to it, before the viewpoint's or the
+  /// centroid's rule. Empty: not used. The mesher throws std::invalid_argument for another size.
+  std::vector<Vec3> cloudNormals;
   void validate() const;         ///< throws std::invalid_argument
 };
 
@@ -250,6 +255,9 @@ private:
     Vec3 reference = Vec3::Zero(); ///< oriented n of the grid edge's end, to orient the result
     ExtremumType type = ExtremumType::None; ///< how g changes along n here (None: edge across n)
   };
+
+  /// The sign that orients the band's corner @p seed, the first of its piece (stage 3).
+  signed char seedSign(std::size_t seed, const Orientation& away) const;
 
   Key keyOf(const std::array<long long, 3>& c) const;
   std::array<long long, 3> coordsOf(Key k) const;
