@@ -277,6 +277,14 @@ proj = P["PointSetSurfaceProjection"](Input=cloud, Variant="Normalized MLS", Pro
                                       ScaleMultiplier=1.7, Dimension="2D (xy-plane)")
 compare("Projection plane, automatic h", fetch(proj), read("proj_plane.vtp"), PROJECTION_ARRAYS + PASSED, [])
 
+pss("project", path("cloud.vtp"), "--point-scales", "estimated", "--point-scale-multiplier", 2, "--start",
+    path("starts.vtp"), "-o", path("proj_point_scales.vtp"))
+proj = P["PointSetSurfaceProjection"](Input=cloud, StartPoints=starts, PointScales="Estimated from the data",
+                                      PointScaleMultiplier=2)
+got = fetch(proj)
+compare("Projection, a scale per point", got, read("proj_point_scales.vtp"), PROJECTION_ARRAYS + PASSED, [])
+check(got.GetFieldData().GetArray("PointScales").GetValue(0) == 1, "PointScales Estimated: no scale per point")
+
 pss("project", path("cloud.vtp"), "-o", path("proj_default.vtp"))
 compare("Projection defaults", fetch(P["PointSetSurfaceProjection"](Input=cloud)), read("proj_default.vtp"),
         PROJECTION_ARRAYS + PASSED, [])
