@@ -682,6 +682,8 @@ int Mesh(const std::vector<std::string>& args)
     [&](const std::string& v) { mesher->SetMaxDistance(pss_cli::ToDouble("max-distance", v)); });
   t.Value("max-normal-angle", "DEG", "outside the domain: n off the cloud's normal by more (default 30)",
     [&](const std::string& v) { mesher->SetMaxNormalAngle(pss_cli::ToDouble("max-normal-angle", v)); });
+  t.Value("max-border-offset", "B", "outside the domain: past the cloud's border, B local h (0 off; default -1: 0.6 with point scales)",
+    [&](const std::string& v) { mesher->SetMaxBorderOffset(pss_cli::ToDouble("max-border-offset", v)); });
   t.Value("max-vertex-travel", "CELLS", "drop crossings whose projection moves farther (default 2)",
     [&](const std::string& v) { mesher->SetMaxVertexTravel(pss_cli::ToDouble("max-vertex-travel", v)); });
   t.Value("max-seam-angle", "DEG", "skip cells across which the oriented n turns more (default 80)",

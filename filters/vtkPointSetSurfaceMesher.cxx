@@ -249,6 +249,9 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.projection.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.domain.maxDistance = this->MaxDistance;
   options.domain.maxNormalAngle = this->MaxNormalAngle;
+  options.domain.maxBorderOffset = this->MaxBorderOffset != BORDER_OFFSET_AUTOMATIC ? std::max(0.0, this->MaxBorderOffset)
+    : this->Surface->GetUsesPointScales()                                            ? 0.6
+                                                                                     : 0.0;
   // In a distributed run every rank builds the same band; each computes its block of the corners,
   // of the crossings and of the holes' centres, and the blocks are exchanged after each stage.
   bool tooLarge = false;
@@ -391,6 +394,7 @@ void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxFoldAngle: " << this->MaxFoldAngle << "\n";
   os << indent << "MaxHoleEdges: " << this->MaxHoleEdges << "\n";
   os << indent << "MinPieceArea: " << this->MinPieceArea << "\n";
+  os << indent << "MaxBorderOffset: " << this->MaxBorderOffset << "\n";
   os << indent << "CoveredPieceArea: " << this->CoveredPieceArea << "\n";
   os << indent << "MaximumNumberOfBandCells: " << this->MaximumNumberOfBandCells << "\n";
   os << indent << "GhostMargin: " << this->GhostMargin << "\n";

@@ -116,6 +116,23 @@ public:
 
   ///@{
   /**
+   * The mesher's own domain criterion, beyond the paper's two: a vertex is outside the domain
+   * when the weighted centroid of the cloud points around it lies farther than MaxBorderOffset
+   * local h from it along the surface. Inside a sampled surface the centroid sits over the vertex;
+   * at a straight border of the samples it trails by h / sqrt(pi) = 0.56 h and by more past it,
+   * so the mesh stops at the cloud's borders instead of running on for MaxDistance: the rim that
+   * a depth frame's per-point scales (about five spacings wide) leave. 0 turns it off;
+   * BORDER_OFFSET_AUTOMATIC (the default) takes 0.6 with a scale per point and 0 with one h,
+   * where MaxDistance (1 h, about two spacings) already keeps the mesh to the cloud and the
+   * paper's own two criteria decide.
+   */
+  static constexpr double BORDER_OFFSET_AUTOMATIC = -1.0;
+  vtkSetClampMacro(MaxBorderOffset, double, BORDER_OFFSET_AUTOMATIC, 100.0);
+  vtkGetMacro(MaxBorderOffset, double);
+  ///@}
+
+  ///@{
+  /**
    * A crossing whose projection moves farther than this many cells is dropped (it was a maximum
    * of e, or a sign change of g that is not the surface). Within [0.1, 100]. Default 2.
    */
@@ -228,6 +245,7 @@ protected:
   int Procedure = EXTREMAL;
   double MaxDistance = 1.0;
   double MaxNormalAngle = 30.0;
+  double MaxBorderOffset = BORDER_OFFSET_AUTOMATIC;
   double MaxVertexTravel = 2.0;
   double MaxSeamAngle = 80.0;
   double MaxFoldAngle = 60.0;

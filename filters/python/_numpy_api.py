@@ -276,8 +276,8 @@ def _vector(what, value):
 def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0, point_scales="automatic",
          point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5,
          min_stability=1e-5, cell=1.0, band=1.0, project_vertices=True, procedure="extremal", max_distance=1.0,
-         max_normal_angle=30.0, max_vertex_travel=2.0, max_seam_angle=80.0, max_fold_angle=60.0, max_hole_edges=100,
-         min_piece_area=10.0, covered_piece_area=10.0, max_band_cells=1 << 24, threads=0, progress=None,
+         max_normal_angle=30.0, max_border_offset=-1.0, max_vertex_travel=2.0, max_seam_angle=80.0, max_fold_angle=60.0,
+         max_hole_edges=100, min_piece_area=10.0, covered_piece_area=10.0, max_band_cells=1 << 24, threads=0, progress=None,
          nonfinite="raise", as_polydata=False):
     """The surface as a triangle mesh (segments in 2D), only where it is defined
     (vtkPointSetSurfaceMesher, ``pss mesh``).
@@ -296,6 +296,10 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
     project_vertices : bool
         Move the vertices onto the surface (default); False leaves them at the grid's crossings
         (``pss mesh --no-projection``).
+    max_border_offset : float
+        Outside the domain past the cloud's border: the neighbours' weighted centroid farther than
+        this many local h from the vertex along the surface (0.56 at a straight border; 0 off;
+        -1, the default: 0.6 with a scale per point, off with one h).
     max_vertex_travel : float
         Drop crossings whose projection moves farther, in cells (0.1 to 100).
     max_seam_angle, max_fold_angle : float
@@ -333,6 +337,7 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
     mesher.SetProcedure(_choice("procedure", procedure, _PROCEDURES))
     for prop, keyword, value, integer in (("MaxDistance", "max_distance", max_distance, False),
                                           ("MaxNormalAngle", "max_normal_angle", max_normal_angle, False),
+                                          ("MaxBorderOffset", "max_border_offset", max_border_offset, False),
                                           ("MaxVertexTravel", "max_vertex_travel", max_vertex_travel, False),
                                           ("MaxSeamAngle", "max_seam_angle", max_seam_angle, False),
                                           ("MaxFoldAngle", "max_fold_angle", max_fold_angle, False),

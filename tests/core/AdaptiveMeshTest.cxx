@@ -4,6 +4,7 @@
 // sparse at the other. The surface must stay whole, where one h would tear its sparse part.
 #include "TestClouds.h"
 
+#include "pss/Domain.h"
 #include "pss/SurfaceMesh.h"
 
 #include <gtest/gtest.h>
@@ -140,4 +141,57 @@ TEST(AdaptiveMesh, SphereDenseOnOneSideIsOneClosedPiece)
   }
   std::cout << "largest |r - R| / (h^2 / R): " << worst << "\n";
   EXPECT_LT(worst, 1.5);
+}
+
+// The mesher's border test (DomainThresholds::maxBorderOffset), against its analytic values: on a
+// dense half-plane the neighbours' centroid trails a point of the border line by h / sqrt(pi)
+// along the plane and sits over an inner point; a mesh of a sampled square stops at its edge
+// with the test, and runs on for about MaxDistance without it.
+TEST(AdaptiveMesh, BorderTestStopsTheMeshAtTheCloudsEdge)
+{
+  const double h = 1.0;
+  std::vector<Vec3> half;
+  for (double x = 0.0; x <= 8.0; x += 0.05)
+  {
+    for (double y = -8.0; y <= 8.0; y += 0.05)
+    {
+      half.emplace_back(x, y, 0.0);
+    }
+  }
+  const PointIndex halfIndex(half, 3);
+  auto halfPlane = makeSurface(Variant::CenterOfMass, halfIndex, params(h));
+  DomainThresholds thresholds;
+  thresholds.maxBorderOffset = 0.6;
+  Workspace ws;
+  const DomainEvidence atBorder = classifyStart(*halfPlane, Vec3(0.0, 0.0, 0.1), ProjectionOptions{}, thresholds, ws);
+  // h / sqrt(pi) for the continuous half-plane; the samples on the border line itself add half a
+  // column's weight at offset 0 (Euler-Maclaurin): (h / sqrt(pi)) / (1 + s / (h sqrt(pi))).
+  const double s = 0.05;
+  EXPECT_NEAR(atBorder.borderOffset, (h / std::sqrt(kPi)) / (1.0 + s / (h * std::sqrt(kPi))), 2e-3);
+  EXPECT_EQ(atBorder.label, DomainLabel::InDomain);
+  const DomainEvidence inside = classifyStart(*halfPlane, Vec3(4.0, 0.0, 0.1), ProjectionOptions{}, thresholds, ws);
+  EXPECT_LT(inside.borderOffset, 1e-5) << "the centroid over the point, up to the sums' rounding";
+  const DomainEvidence past = classifyStart(*halfPlane, Vec3(-0.3, 0.0, 0.1), ProjectionOptions{}, thresholds, ws);
+  EXPECT_GT(past.borderOffset, 0.6);
+  EXPECT_EQ(past.label, DomainLabel::Spurious);
+
+  // A square of side 10 sampled every 0.25 h: how far past its edge do the vertices reach?
+  const PointIndex square(planeCloud(5.0, 0.25), 3);
+  auto surface = makeSurface(Variant::CenterOfMass, square, params(h));
+  auto overhang = [&](double maxBorderOffset) {
+    MeshOptions options;
+    options.domain.maxBorderOffset = maxBorderOffset;
+    const SurfaceMesh mesh = extractSurfaceMesh(*surface, options, 0);
+    double worst = -1e9;
+    for (const Vec3& p : mesh.points)
+    {
+      worst = std::max(worst, std::max(std::abs(p.x()), std::abs(p.y())) - 5.0);
+    }
+    return worst;
+  };
+  const double without = overhang(0.0), with = overhang(0.6);
+  std::cout << "overhang past the square's edge: " << without << " h without the border test, " << with
+            << " h with it\n";
+  EXPECT_GT(without, 0.5 * h);
+  EXPECT_LT(with, 0.2 * h);
 }

@@ -63,6 +63,9 @@ class Header:
         for body in re.findall(r"enum\s+\w+\s*\{([^}]*)\}", text):
             for name, value in re.findall(r"(\w+)\s*=\s*(-?\d+)", body):
                 self.enums[name] = float(value)
+        # Named values outside enums, e.g. static constexpr double BORDER_OFFSET_AUTOMATIC = -1.0;
+        for name, value in re.findall(r"static\s+constexpr\s+(?:double|int)\s+(\w+)\s*=\s*(-?[\d.]+)\s*;", text):
+            self.enums[name] = float(value)
         self.members = {}
         for _type, name, is_array, value in re.findall(
             r"^\s*(int|double|bool|vtkIdType)\s+(\w+)\s*(\[\s*\d+\s*\])?\s*=\s*([^;]+);", text, flags=re.M

@@ -37,6 +37,10 @@ void DomainThresholds::validate() const
   {
     throw std::invalid_argument("the domain normal-angle threshold must be in [0, 90] degrees");
   }
+  if (!(maxBorderOffset >= 0.0) || !std::isfinite(maxBorderOffset))
+  {
+    throw std::invalid_argument("the domain border-offset threshold must be 0 (off) or a positive multiple of h");
+  }
 }
 
 double unorientedAngleDegrees(const Vec3& a, const Vec3& b)
@@ -131,7 +135,16 @@ DomainEvidence classifyStart(const SurfaceDefinition& s, const Vec3& start, cons
   const double h = index.hasScales() ? index.scale(nearest.first) : s.h();
   const bool far = ev.distanceToCloud > thresholds.maxDistance * h;
   const bool misaligned = cloudNormal.defined && ev.normalAngle > thresholds.maxNormalAngle;
-  ev.label = far || misaligned ? DomainLabel::Spurious : DomainLabel::InDomain;
+  bool past = false;
+  if (thresholds.maxBorderOffset > 0.0 && !far)
+  {
+    gatherNeighbourhood(index, s.parameters(), r.point, ws.local, ws);
+    const Vec3 offset = centroidOffset(ws.local);
+    const Vec3& n = r.direction.n;
+    ev.borderOffset = (offset - offset.dot(n) * n).norm() / (index.hasScales() ? ws.local.localScale : s.h());
+    past = ev.borderOffset > thresholds.maxBorderOffset;
+  }
+  ev.label = far || misaligned || past ? DomainLabel::Spurious : DomainLabel::InDomain;
   return ev;
 }
 

@@ -42,6 +42,11 @@ struct DomainThresholds
 {
   double maxDistance = 1.0;      ///< fixed point farther than this (in h) from every cloud point: Spurious
   double maxNormalAngle = 30.0;  ///< degrees between n at the fixed point and the cloud's normal there
+  /// Past the cloud's border: the weighted centroid of the neighbours of the fixed point lies
+  /// farther than this (in the local h) from it along the surface (perpendicular to n): Spurious.
+  /// Inside a sampled surface the centroid sits about over the point; at a straight border of the
+  /// samples it trails by h / sqrt(pi) = 0.56 h, and by more beyond it. 0 (the default): not tested.
+  double maxBorderOffset = 0.0;
 
   void validate() const; ///< throws std::invalid_argument
 };
@@ -54,6 +59,7 @@ struct DomainEvidence
   double normalAngle = 0.0;      ///< degrees, in [0, 90]: n at the fixed point vs the cloud's normal there
   double startAngle = 0.0;       ///< degrees, in [0, 90]: n at the start point vs n at the fixed point
   double startStability = 0.0;   ///< stability of n at the start point
+  double borderOffset = 0.0;     ///< in local h: the neighbours' centroid along the surface (with maxBorderOffset)
 };
 
 /**

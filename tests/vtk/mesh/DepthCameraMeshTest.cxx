@@ -9,7 +9,7 @@
  *   noise sigma at their depth;
  * - no triangle bridges a depth discontinuity: a triangle from a foreground object to the
  *   background would cross the empty space between them, so every triangle's centre must lie
- *   within 3 h (the median scale) of a true surface;
+ *   within 3 local h (the scale of the cloud point nearest to it) of a true surface;
  * - boundary edges only where the frame ends: each lies, in the image, within 3 h of the frame
  *   border, of a pixel without a measurement (no hit, out of range, projector shadow) or of a
  *   depth discontinuity (4-neighbour pixels whose true depths differ by more than 3%).
