@@ -46,6 +46,18 @@ double distanceToCloud(const pss::PointIndex& index, const Vec3& x)
   return std::sqrt(index.nearest(x).second);
 }
 
+// Two 16 x 16 squares @p gap apart (5,000 points): the two-sheets scene.
+pss::CloudSpec twoSheets(double gap)
+{
+  pss::CloudSpec spec;
+  spec.scene = pss::Scene::TwoSheets;
+  spec.dimension = 3;
+  spec.size = 16.0;
+  spec.count = 5000;
+  spec.gap = gap;
+  return spec;
+}
+
 pss::CloudSpec sphereSpec()
 {
   pss::CloudSpec spec;
@@ -305,13 +317,7 @@ TEST(Mesh, NoisySquarePatchEndsAtItsBorder)
 
 TEST(Mesh, TwoSheetsFourHApartStayApart)
 {
-  pss::CloudSpec spec;
-  spec.scene = pss::Scene::TwoSheets;
-  spec.dimension = 3;
-  spec.size = 16.0;
-  spec.count = 5000;
-  spec.gap = 4.0;
-  const pss::PointIndex index = indexOf(spec);
+  const pss::PointIndex index = indexOf(twoSheets(4.0));
   for (pss::Variant v : { pss::Variant::CenterOfMass, pss::Variant::LevinMLS, pss::Variant::NormalizedMLS })
   {
     pss::MeshOptions options;
@@ -338,13 +344,7 @@ TEST(Mesh, TwoSheetsFourHApartStayApart)
 // normals both face +z. A normal of zero leaves the choice to the rule; a wrong count is refused.
 TEST(Mesh, CloudNormalsOrientEachPiece)
 {
-  pss::CloudSpec spec;
-  spec.scene = pss::Scene::TwoSheets;
-  spec.dimension = 3;
-  spec.size = 16.0;
-  spec.count = 5000;
-  spec.gap = 4.0;
-  const pss::PointIndex index = indexOf(spec);
+  const pss::PointIndex index = indexOf(twoSheets(4.0));
   auto zSigns = [](const pss::SurfaceMesh& mesh) {
     std::array<std::size_t, 2> up{}; // vertices with n_z > 0 on the lower and the upper sheet
     for (std::size_t i = 0; i < mesh.points.size(); ++i)
@@ -378,13 +378,7 @@ TEST(Mesh, TwoSheetsOneAndAHalfHApart)
   // sheets, every vertex at |z| in [0.70, 0.95] (pulled up to 0.2 h outward), fragmented where n is
   // undefined between them; Levin's and the normalized MLS (cell 0.5 h, within Levin's narrow
   // domain) also give pieces near the middle plane, on neither sheet.
-  pss::CloudSpec spec;
-  spec.scene = pss::Scene::TwoSheets;
-  spec.dimension = 3;
-  spec.size = 16.0;
-  spec.count = 5000;
-  spec.gap = 1.5;
-  const pss::PointIndex index = indexOf(spec);
+  const pss::PointIndex index = indexOf(twoSheets(1.5));
   const pss::SurfaceMesh com = meshOf(index, pss::Variant::CenterOfMass, 1.0);
   describe(com);
   EXPECT_GT(com.triangles.size(), 1000u);
