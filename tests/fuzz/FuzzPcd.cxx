@@ -10,9 +10,12 @@
  * - what it read adds up: points kept + points skipped = POINTS of the header, and every array
  *   has one tuple per point;
  * - what it read, written in any DATA kind and read back, has the same points and arrays, bit for
- *   bit (up to 4096 points, to keep the rate of inputs high).
+ *   bit (up to 4096 points, to keep the rate of inputs high);
+ * - the bytes after the first, taken as an LZF block, decode to the same count and bytes with the
+ *   reader's decoder and with liblzf's (the first byte sets the room).
  */
 #include "FuzzContract.h"
+#include "PointSetSurfacesPCDBody.h"
 
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
@@ -25,6 +28,11 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkVariant.h"
+
+extern "C"
+{
+#include <lzf.h>
+}
 
 #include <cmath>
 #include <cstdint>
@@ -80,6 +88,23 @@ bool SameBits(vtkDataArray* a, vtkDataArray* b, bool anyNaN)
   return true;
 }
 
+// The reader's LZF decoder against liblzf's on the input taken as an LZF block (after the first
+// byte, which sets the room): the same count and bytes, whatever the block.
+void CompareLzfDecoders(const std::uint8_t* data, std::size_t size)
+{
+  if (size < 2)
+  {
+    return; // liblzf reads a control byte even from an empty block
+  }
+  const std::size_t room = (size - 1) * (1 + data[0] % 8);
+  std::vector<unsigned char> ours(room), theirs(room);
+  const std::size_t n = pss_pcd::detail::DecodeLzf(data + 1, size - 1, ours.data(), room);
+  const unsigned int m =
+    lzf_decompress(data + 1, static_cast<unsigned int>(size - 1), theirs.data(), static_cast<unsigned int>(room));
+  PSS_FUZZ_CHECK(n == m);
+  PSS_FUZZ_CHECK(std::memcmp(ours.data(), theirs.data(), n) == 0);
+}
+
 } // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***)
@@ -100,6 +125,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     return 0;
   }
+  CompareLzfDecoders(data, size);
   const bool skipNaN = (data[0] & 1) == 0;
   const int mode = (data[0] >> 1) % 3;
   const std::string path = Folder + "/input.pcd";
