@@ -252,8 +252,8 @@ TEST(Cli, PcdInAndOut)
   }
 }
 
-// The real frames of ../shared/data/real-scans: read, projected and (the room scan) meshed, the
-// organized frames' invalid pixels reported with their count.
+// The real frames of ../shared/data/real-scans: read, projected and meshed, the organized frames'
+// invalid pixels reported with their count.
 TEST(Cli, RealScansPcd)
 {
   const std::string folder = std::string(PSS_SHARED_DATA_DIR) + "/real-scans/";
@@ -278,11 +278,14 @@ TEST(Cli, RealScansPcd)
     {
       EXPECT_NE(r.output.find(frame.skipped), std::string::npos) << r.output;
     }
+    // Every frame meshes with the defaults; the organized ones take a scale per point from their
+    // grid, the room scan from its spread of scales.
+    const CommandResult mesh = RunCommand(Pss() + " mesh " + folder + frame.name + ".pcd --threads 2 --verbose -o " +
+      TempPath(std::string(frame.name) + "-mesh.ply"));
+    EXPECT_EQ(mesh.exitCode, 0) << mesh.output;
+    EXPECT_NE(mesh.output.find(" triangles"), std::string::npos) << mesh.output;
+    EXPECT_NE(mesh.output.find("a scale per point"), std::string::npos) << mesh.output;
   }
-  const CommandResult mesh =
-    RunCommand(Pss() + " mesh " + folder + "room_scan1.pcd --threads 2 --verbose -o " + TempPath("room_scan1-mesh.ply"));
-  EXPECT_EQ(mesh.exitCode, 0) << mesh.output;
-  EXPECT_NE(mesh.output.find(" triangles"), std::string::npos) << mesh.output;
 }
 
 // The Stanford bunny: projecting the merged real scans with the centre-of-mass definition moves

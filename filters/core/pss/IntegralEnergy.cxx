@@ -337,8 +337,14 @@ IntegralDirection::Minimum IntegralDirection::refineDirection(const Vec3& x, con
   // that the quadratic model means little), and is halved until e_I decreases. Where e_I is
   // constant along a ring of directions (n is not unique there, stability ~0) the steps stop
   // decreasing it and the iteration ends.
+  // A step is taken when it lowers e_I, which values tell only down to about sqrt(epsilon), so
+  // the last step, once the tilt Hessian is positive definite and the step below finalStep, is
+  // taken without evaluating it: the quadratic model holds there to far below rounding. Every
+  // search then ends at the minimiser to rounding, not anywhere within the band that values
+  // cannot resolve (two sums of the same terms in another order, such as one h and every h_i = h,
+  // give the same n_I to about 1e-14 rad).
   constexpr double maxTurn = 0.2;
-  constexpr double angularTolerance = 1e-8;
+  constexpr double finalStep = 1e-7;
   constexpr int maxIterations = 30;
   using Frame = IntegralEnergy::Frame;
   using PlaneIntegral = IntegralEnergy::PlaneIntegral;
@@ -366,12 +372,16 @@ IntegralDirection::Minimum IntegralDirection::refineDirection(const Vec3& x, con
     {
       step *= maxTurn / step.norm();
     }
-    if (step.norm() < angularTolerance)
+    if (step.norm() < finalStep)
     {
+      if (eigen.eigenvalues().minCoeff() > 0.0)
+      {
+        f = IntegralEnergy::tilted(f, step);
+      }
       break;
     }
     bool moved = false;
-    for (int halving = 0; halving < 10 && step.norm() >= angularTolerance; ++halving, step *= 0.5)
+    for (int halving = 0; halving < 10 && step.norm() >= finalStep; ++halving, step *= 0.5)
     {
       const Frame trialFrame = IntegralEnergy::tilted(f, step);
       const PlaneIntegral trial = Integral.integrate(x, trialFrame, second, ws);
