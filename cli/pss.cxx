@@ -676,8 +676,8 @@ int Mesh(const std::vector<std::string>& args)
     [&](const std::string& v) { mesher->SetBand(inRange("band", v, 0.1, 100.0)); });
   t.Switch("no-projection", "leave the vertices at the grid's zero crossings of g (default: projected)",
     [&]() { mesher->ProjectVerticesOff(); });
-  t.Value("procedure", "NAME", "extremal | plane: how the vertices are projected (default extremal)",
-    [&](const std::string& v) { mesher->SetProcedure(pss_cli::ToChoice("procedure", v, { "extremal", "plane" })); });
+  t.Value("procedure", "NAME", "extremal | plane | automatic: how the vertices are projected (default automatic: plane for com with point scales, else extremal)",
+    [&](const std::string& v) { mesher->SetProcedure(pss_cli::ToChoice("procedure", v, { "extremal", "plane", "automatic" })); });
   t.Value("max-distance", "D", "outside the domain: a projection ending farther than D h from the cloud (default 1)",
     [&](const std::string& v) { mesher->SetMaxDistance(pss_cli::ToDouble("max-distance", v)); });
   t.Value("max-normal-angle", "DEG", "outside the domain: n off the cloud's normal by more (default 30)",
@@ -712,7 +712,7 @@ int Mesh(const std::vector<std::string>& args)
   });
   if (run.verbose)
   {
-    std::fprintf(stderr, "pss: mesh stages: %s\n", mesher->GetTimingReport());
+    std::fprintf(stderr, "pss: mesh stages: %s (%s procedure)\n", mesher->GetTimingReport(), mesher->GetUsedProcedure() == 1 ? "plane" : "extremal");
   }
   SummarizeMesh(run, mesher->GetOutput());
   Write(run, mesher->GetOutput(), run.output);

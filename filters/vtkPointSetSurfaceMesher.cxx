@@ -246,7 +246,11 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.minPieceArea = this->MinPieceArea;
   options.coveredPieceArea = this->CoveredPieceArea;
   options.maxBandCells = static_cast<std::size_t>(this->MaximumNumberOfBandCells);
-  options.projection.procedure = this->Procedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
+  this->UsedProcedure = this->Procedure != AUTOMATIC ? this->Procedure
+    : this->Surface->GetUsesPointScales() && this->Surface->GetVariant() == vtkPointSetSurface::CENTER_OF_MASS
+    ? PLANE
+    : EXTREMAL;
+  options.projection.procedure = this->UsedProcedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;
   options.domain.maxDistance = this->MaxDistance;
   options.domain.maxNormalAngle = this->MaxNormalAngle;
   options.domain.maxBorderOffset = this->MaxBorderOffset != BORDER_OFFSET_AUTOMATIC ? std::max(0.0, this->MaxBorderOffset)
@@ -308,6 +312,10 @@ int vtkPointSetSurfaceMesher::RequestData(
     a->SetValue(0, entry.second);
     output->GetFieldData()->AddArray(a);
   }
+  // The procedure the vertices were projected with (0 extremal, 1 plane), AUTOMATIC resolved.
+  auto procedure = pss_vtk::NewArray<vtkIntArray>("Procedure", 1, 1);
+  procedure->SetValue(0, this->UsedProcedure);
+  output->GetFieldData()->AddArray(procedure);
   AddStatistics(mesh->statistics, output->GetFieldData());
   if (controller)
   {
@@ -386,7 +394,9 @@ void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CellSize: " << this->CellSize << "\n";
   os << indent << "Band: " << this->Band << "\n";
   os << indent << "ProjectVertices: " << (this->ProjectVertices ? "On" : "Off") << "\n";
-  os << indent << "Procedure: " << (this->Procedure == PLANE ? "Plane" : "Extremal") << "\n";
+  const char* procedures[] = { "Extremal", "Plane", "Automatic" };
+  os << indent << "Procedure: " << procedures[this->Procedure] << "\n";
+  os << indent << "UsedProcedure: " << procedures[this->UsedProcedure] << "\n";
   os << indent << "MaxDistance: " << this->MaxDistance << "\n";
   os << indent << "MaxNormalAngle: " << this->MaxNormalAngle << "\n";
   os << indent << "MaxVertexTravel: " << this->MaxVertexTravel << "\n";

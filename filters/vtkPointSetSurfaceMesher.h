@@ -61,11 +61,12 @@ public:
   vtkTypeMacro(vtkPointSetSurfaceMesher, vtkPointSetSurfaceAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// How crossings are projected (values match vtkPointSetSurfaceProjection's).
+  /// How crossings are projected (EXTREMAL and PLANE match vtkPointSetSurfaceProjection's).
   enum ProcedureType
   {
     EXTREMAL = 0,
-    PLANE = 1
+    PLANE = 1,
+    AUTOMATIC = 2
   };
 
   ///@{
@@ -97,10 +98,19 @@ public:
   ///@}
 
   ///@{
-  /// EXTREMAL (Definition 1, default) or PLANE (the centre-of-mass fast path) for the projections.
-  vtkSetClampMacro(Procedure, int, EXTREMAL, PLANE);
+  /**
+   * How the crossings are projected: EXTREMAL (Definition 1), PLANE (the centre-of-mass fast path,
+   * x <- x - <n, x - c(x)> n) or AUTOMATIC (the default): PLANE for the centre of mass with a
+   * scale per point (a sensor frame: the same pieces and holes at 0.4-0.55x the time, measured in
+   * docs/adaptive-scale.md), EXTREMAL otherwise, so a cloud of even density is meshed as before.
+   * GetUsedProcedure() says which one the last run took.
+   */
+  vtkSetClampMacro(Procedure, int, EXTREMAL, AUTOMATIC);
   vtkGetMacro(Procedure, int);
   ///@}
+
+  /// EXTREMAL or PLANE: the procedure the last run used (Procedure, with AUTOMATIC resolved).
+  vtkGetMacro(UsedProcedure, int);
 
   ///@{
   /**
@@ -242,7 +252,8 @@ protected:
   double CellSize = 1.0;
   double Band = 1.0;
   bool ProjectVertices = true;
-  int Procedure = EXTREMAL;
+  int Procedure = AUTOMATIC;
+  int UsedProcedure = EXTREMAL;
   double MaxDistance = 1.0;
   double MaxNormalAngle = 30.0;
   double MaxBorderOffset = BORDER_OFFSET_AUTOMATIC;

@@ -275,7 +275,7 @@ def _vector(what, value):
 
 def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0, point_scales="automatic",
          point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5,
-         min_stability=1e-5, cell=1.0, band=1.0, project_vertices=True, procedure="extremal", max_distance=1.0,
+         min_stability=1e-5, cell=1.0, band=1.0, project_vertices=True, procedure="automatic", max_distance=1.0,
          max_normal_angle=30.0, max_border_offset=-1.0, max_vertex_travel=2.0, max_seam_angle=80.0, max_fold_angle=60.0,
          max_hole_edges=100, min_piece_area=10.0, covered_piece_area=10.0, max_band_cells=1 << 24, threads=0, progress=None,
          nonfinite="raise", as_polydata=False):
@@ -287,8 +287,11 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
     cloud : (N, 3) or (N, 2) array, file path or vtkPointSet
         The points that define the surface.
     variant, h, scale_neighbors, scale_multiplier, point_scales, point_scale_multiplier, scale_spread,
-    dimension, cutoff, quadrature, delta_lattice, min_stability, procedure, max_distance, max_normal_angle :
+    dimension, cutoff, quadrature, delta_lattice, min_stability, max_distance, max_normal_angle :
     as in ``classify()``.
+    procedure : "extremal", "plane" or "automatic"
+        How the vertices are projected; "automatic" (the default) takes "plane" for the centre of
+        mass with a scale per point (a sensor frame) and "extremal" otherwise.
     cell : float
         Grid cell size, in h (0.05 to 100).
     band : float
@@ -334,7 +337,7 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
     _set(mesher, "CellSize", _number("cell", cell), "cell")
     _set(mesher, "Band", _number("band", band), "band")
     mesher.SetProjectVertices(bool(project_vertices))
-    mesher.SetProcedure(_choice("procedure", procedure, _PROCEDURES))
+    mesher.SetProcedure(_choice("procedure", procedure, _PROCEDURES + ("automatic",)))
     for prop, keyword, value, integer in (("MaxDistance", "max_distance", max_distance, False),
                                           ("MaxNormalAngle", "max_normal_angle", max_normal_angle, False),
                                           ("MaxBorderOffset", "max_border_offset", max_border_offset, False),

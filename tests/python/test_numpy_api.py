@@ -501,7 +501,7 @@ class DefaultsTest(unittest.TestCase):
                     "max_band_cells": "GetMaximumNumberOfBandCells"})
         for function, obj in ((pss.project, pss.vtkPointSetSurfaceProjection()),
                               (pss.mesh, pss.vtkPointSetSurfaceMesher())):
-            self.assertEqual(self.defaults(function)["procedure"], ("extremal", "plane")[obj.GetProcedure()])
+            self.assertEqual(self.defaults(function)["procedure"], ("extremal", "plane", "automatic")[obj.GetProcedure()])
 
     def test_every_function_has_a_docstring(self):
         for function in (pss.project, pss.classify, pss.sample, pss.mesh, pss.read):

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * The mesher with every default on a simulated depth-camera frame (vtkPointSetSurfaceCloudSource's
+ * The mesher on a simulated depth-camera frame, with every default (the automatic procedure, which
+ * takes the plane procedure there) and with the extremal procedure (vtkPointSetSurfaceCloudSource's
  * DEPTH_CAMERA, seed 1: a table, a box, a cylinder and a sphere seen by a structured-light sensor
  * with depth noise sigma0 z^2 and disparity quantized to 1/8 pixel), measured against the exact
  * scene (pss::distanceToDepthScene, pss::traceDepthImage):
@@ -103,21 +104,26 @@ struct ImageTruth
   }
 };
 
-} // namespace
-
-TEST(DepthCameraMesh, MeshedWhereSeenOnTheSurfacesAndOpenOnlyAtTheFramesEdges)
+// Every check of the file comment on the frame meshed with @p procedure (every other default).
+// Returns the mesher's UsedProcedure.
+int CheckFrameMesh(int procedure)
 {
   vtkNew<vtkPointSetSurfaceCloudSource> source;
   source->SetSceneToDepthCamera();
   source->SetSeed(1);
-  vtkNew<vtkPointSetSurfaceMesher> mesher; // every default
+  vtkNew<vtkPointSetSurfaceMesher> mesher;
+  mesher->SetProcedure(procedure);
   mesher->SetInputConnection(source->GetOutputPort());
   mesher->Update();
   vtkPolyData* frame = source->GetOutput();
   vtkPolyData* mesh = mesher->GetOutput();
   const double h = mesher->GetEffectiveScale();
-  ASSERT_TRUE(mesher->GetSurface()->GetUsesPointScales()) << "a sensor frame takes a scale per point";
-  ASSERT_GT(mesh->GetNumberOfPolys(), 10000);
+  EXPECT_TRUE(mesher->GetSurface()->GetUsesPointScales()) << "a sensor frame takes a scale per point";
+  EXPECT_GT(mesh->GetNumberOfPolys(), 10000);
+  if (mesh->GetNumberOfPolys() == 0)
+  {
+    return -1;
+  }
   const double sigma0 = source->GetDepthNoise();
   std::cout << "frame " << frame->GetNumberOfPoints() << " pixels, median h " << h << ", mesh "
             << mesh->GetNumberOfPoints() << " vertices, " << mesh->GetNumberOfPolys() << " triangles\n";
@@ -147,7 +153,11 @@ TEST(DepthCameraMesh, MeshedWhereSeenOnTheSurfacesAndOpenOnlyAtTheFramesEdges)
     }(),
     3);
   vtkDataArray* surfaceIds = frame->GetPointData()->GetArray("SurfaceId");
-  ASSERT_NE(surfaceIds, nullptr);
+  if (surfaceIds == nullptr)
+  {
+    ADD_FAILURE() << "the frame has no SurfaceId array";
+    return -1;
+  }
   std::map<int, std::array<std::size_t, 2>> covered; // surface: {points, points near a vertex}
   for (vtkIdType i = 0; i < frame->GetNumberOfPoints(); ++i)
   {
@@ -175,7 +185,11 @@ TEST(DepthCameraMesh, MeshedWhereSeenOnTheSurfacesAndOpenOnlyAtTheFramesEdges)
   // it) of a true surface. Where a surface ends, the mesh may reach past its edge by up to
   // MaxDistance (1 local h); a bridge would cross the gap between two surfaces.
   const pss::PointIndex* cloudIndex = mesher->GetSurface()->GetIndex();
-  ASSERT_NE(cloudIndex, nullptr);
+  if (cloudIndex == nullptr)
+  {
+    ADD_FAILURE() << "the surface kept no index";
+    return -1;
+  }
   double farthest = 0.0;
   const vtkIdType* ids = nullptr;
   vtkIdType count = 0;
@@ -219,4 +233,19 @@ TEST(DepthCameraMesh, MeshedWhereSeenOnTheSurfacesAndOpenOnlyAtTheFramesEdges)
             << " at unmeasured pixels, " << reasons[2] << " at depth discontinuities, " << reasons[3]
             << " elsewhere\n";
   EXPECT_EQ(reasons[3], 0u);
+  return mesher->GetUsedProcedure();
+}
+
+} // namespace
+
+// Every default: the procedure is automatic, which takes the plane procedure on a sensor frame.
+TEST(DepthCameraMesh, MeshedWhereSeenOnTheSurfacesAndOpenOnlyAtTheFramesEdges)
+{
+  EXPECT_EQ(CheckFrameMesh(vtkPointSetSurfaceMesher::AUTOMATIC), vtkPointSetSurfaceMesher::PLANE);
+}
+
+// The extremal procedure (Definition 1) meets the same bounds.
+TEST(DepthCameraMesh, ExtremalProcedureMeetsTheSameBounds)
+{
+  EXPECT_EQ(CheckFrameMesh(vtkPointSetSurfaceMesher::EXTREMAL), vtkPointSetSurfaceMesher::EXTREMAL);
 }
