@@ -24,6 +24,7 @@ class vtkDataObject;
 class vtkInformationVector;
 class vtkMultiProcessController;
 class vtkPointData;
+class vtkPoints;
 class vtkPointSet;
 class vtkPointSetSurface;
 class vtkPolyData;

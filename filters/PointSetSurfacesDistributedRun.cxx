@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PointSetSurfacesDistributedRun.h"
+#include "PointSetSurfacesSMP.h"
 #include "PointSetSurfacesVTKUtilities.h"
 
 #include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
+#include "vtkPoints.h"
 #include "vtkPointSetSurface.h"
 
+#include "pss/DeltaLattice.h"
 #include "pss/PointIndex.h"
 #include "pss/SurfaceDefinition.h"
 
@@ -75,6 +78,39 @@ double DistributedRun::MaximumOverRanks(double value)
     this->Controller->AllReduce(&value, &all, 1, vtkCommunicator::MAX_OP);
   }
   return all;
+}
+
+bool DistributedRun::LatticeServes(vtkPoints* starts)
+{
+  const int variant = this->Surface->GetVariant();
+  if (!(this->Surface->GetDeltaLatticeSpacing() > 0.0) ||
+    (variant != vtkPointSetSurface::INTEGRAL && variant != vtkPointSetSurface::DELTA))
+  {
+    return true; // the same answer on every rank: no collective needed
+  }
+  const pss::SurfaceDefinition* definition = this->Surface->GetDefinition();
+  vtkIdType count = starts ? starts->GetNumberOfPoints() : 0;
+  std::vector<std::uint64_t> keys;
+  if (definition && count > 0)
+  {
+    keys = pss::latticeBrickKeys(ToVectors(starts, CoreThreads()), definition->index(), definition->parameters());
+  }
+  if (this->Controller)
+  {
+    bool tooLarge = false;
+    std::vector<std::uint64_t> all;
+    if (!GatherCellKeys(this->Controller, keys, all, tooLarge))
+    {
+      return true; // beyond one message on every rank alike: far more starts than a scattered set
+    }
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    keys = std::move(all);
+    vtkIdType total = count;
+    this->Controller->AllReduce(&count, &total, 1, vtkCommunicator::SUM_OP);
+    count = total;
+  }
+  return pss::latticeServes(static_cast<std::size_t>(count), keys.size());
 }
 
 double DistributedRun::GetScale() const

@@ -68,6 +68,14 @@ public:
   /// Collective in MPI: the largest @p value of every rank (@p value itself in one process).
   double MaximumOverRanks(double value);
 
+  /**
+   * Collective in MPI (after Prepare, before any early return). Whether the delta lattice serves
+   * the start points @p starts of every rank (pss::latticeServes on their number and the lattice
+   * bricks they occupy, so that the choice is the one process's); true when the surface reads no
+   * lattice (another definition, or DeltaLatticeSpacing 0).
+   */
+  bool LatticeServes(vtkPoints* starts);
+
   vtkMultiProcessController* GetController() const { return this->Controller; }
   /// Whether the run uses ghost points (MPI and GhostMargin > 0).
   bool HasGhosts() const { return this->Ghosts; }

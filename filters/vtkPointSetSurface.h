@@ -202,7 +202,9 @@ public:
    * lattice's nodes and interpolated (tricubic Hermite) between them (pss/DeltaLattice.h). 0
    * evaluates delta exactly at every node and takes the stability's e_perp from the full rule
    * throughout: the reference, about 20 times slower on a cloud's own points (measured on the bunny
-   * scans), but about 1.5 times faster for a few isolated start points. Default 0.5 (on the bunny
+   * scans), but about 1.35 times faster for a few isolated start points, which the projection and
+   * the classifier therefore send to the exact path themselves (pss::latticeServes: fewer than 1.5
+   * start points per lattice brick of 8 x 8 x 8 nodes, counted over every rank). Default 0.5 (on the bunny
    * scans every end point within 6e-4 h of the exact path's; docs/paper.md, "Reading: the integral
    * energy's fast path", for the synthetic scenes). Within [0, 1]; values in (0, 0.05) are refused
    * by Prepare.

@@ -179,6 +179,8 @@ int vtkPointSetSurfaceProjection::RequestData(
     return 0;
   }
   const vtkIdType firstGlobalId = run.FirstGlobalId(n); // collective: before any early return
+  // A start set too thin to share the delta lattice's nodes is projected on the exact path.
+  const bool exactDelta = !run.LatticeServes(startPoints); // collective too
   if (n == 0 && !run.HasGhosts())
   {
     return 1; // nothing to project: empty outputs
@@ -218,6 +220,7 @@ int vtkPointSetSurfaceProjection::RequestData(
         double start[3];
         startPoints->GetPoint(i, start);
         ws.leftCompleteRegion = false;
+        ws.exactDelta = exactDelta;
         arrays.Set(i, this->ProjectPoint(i, start, *surface, options, ws), start, index, orientation);
         if (run.HasGhosts())
         {

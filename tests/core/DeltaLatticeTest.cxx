@@ -12,7 +12,9 @@
 //   convergence differing for at most 0.5%, and end points, n and labels no farther from the
 //   exact path's than the exact path's own at the next quadrature order (see expectAgreement:
 //   a bound of 1e-3 h is below that, so it is printed, not asserted);
-// - results are bitwise the same on 1 and 2 threads and with a used or a fresh workspace.
+// - results are bitwise the same on 1 and 2 threads and with a used or a fresh workspace;
+// - the rule that sends a scattered start set to the exact path counts bricks as it should, and a
+//   workspace told exactDelta gives the exact path's bits.
 
 #include "TestClouds.h"
 
@@ -518,5 +520,56 @@ TEST(DeltaLattice, BitwiseOnOneAndTwoThreadsAndAnyWorkspace)
         EXPECT_EQ(one[i].iterations, other2->iterations) << variantName(v) << " start " << i;
       }
     }
+  }
+}
+
+// The rule on a whole start set: the bricks (8 cells of the spacing a side) a set occupies, and
+// whether it is dense enough for the lattice; a workspace told exactDelta gives the exact path's
+// bits, whatever lattice it holds.
+TEST(DeltaLattice, ScatteredStartsTakeTheExactPath)
+{
+  const double h = 1.0;
+  const PointIndex index(planeCloud(10.0, 0.5), 3);
+  const SurfaceParameters params = withLattice(h, 0.5); // bricks of 4 h
+  // 64 starts inside one brick [0, 4)^3, then the same number 40 h apart: one brick each.
+  std::vector<Vec3> dense;
+  std::vector<Vec3> scattered;
+  for (int k = 0; k < 64; ++k)
+  {
+    dense.emplace_back(0.5 + 0.4 * (k % 8), 0.5 + 0.4 * (k / 8), 0.25);
+    scattered.emplace_back(40.0 * (k % 8) - 150.0, 40.0 * (k / 8) - 150.0, -0.3);
+  }
+  scattered.emplace_back(std::nan(""), 0.0, 0.0); // not finite: no brick
+  EXPECT_EQ(latticeBrickKeys(dense, index, params).size(), 1u);
+  EXPECT_EQ(latticeBrickKeys(scattered, index, params).size(), 64u);
+  EXPECT_TRUE(latticeServes(dense.size(), 1));
+  EXPECT_FALSE(latticeServes(64, 64));
+  EXPECT_TRUE(latticeServes(96, 64)); // 1.5 per brick
+  // Negative coordinates just below a brick's side and 2D: z does not count.
+  const PointIndex planar(planeCloud(10.0, 0.5), 2);
+  EXPECT_EQ(latticeBrickKeys({ Vec3(-0.1, 0.0, 0.0), Vec3(-3.9, 0.0, 100.0) }, planar, params).size(), 1u);
+  EXPECT_EQ(latticeBrickKeys({ Vec3(-0.1, 0.0, 0.0), Vec3(0.1, 0.0, 0.0) }, planar, params).size(), 2u);
+
+  ProjectionOptions options;
+  for (Variant v : { Variant::Integral, Variant::Delta })
+  {
+    const auto fast = makeSurface(v, index, params);
+    const auto exact = makeSurface(v, index, withLattice(h, 0.0));
+    Workspace told;
+    told.exactDelta = true;
+    Workspace plain;
+    Workspace lattice;
+    bool differs = false;
+    for (const Vec3& start : { Vec3(0.3, 0.2, 0.7), Vec3(-2.0, 1.5, -0.4) })
+    {
+      const ProjectionResult a = project(*fast, start, options, lattice); // fills the lattice
+      const ProjectionResult b = project(*fast, start, options, told);
+      const ProjectionResult c = project(*exact, start, options, plain);
+      EXPECT_EQ(b.point, c.point) << variantName(v);
+      EXPECT_EQ(b.direction.n, c.direction.n) << variantName(v);
+      EXPECT_EQ(b.iterations, c.iterations) << variantName(v);
+      differs = differs || a.point != c.point;
+    }
+    EXPECT_TRUE(differs) << variantName(v) << ": the lattice path should not be the exact one bit for bit";
   }
 }

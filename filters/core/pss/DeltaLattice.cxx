@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pss/DeltaLattice.h"
+#include "pss/PointIndex.h"
 #include "pss/Workspace.h"
 
 #include <algorithm>
@@ -63,11 +64,14 @@ void LatticeCache::clear()
   hasLast = false;
 }
 
+double DeltaLattice::spacingFor(const PointIndex& index, const SurfaceParameters& params)
+{
+  return params.deltaLattice * (index.hasScales() ? index.minScale() : params.h);
+}
+
 DeltaLattice::DeltaLattice(const DistanceField& field)
   : Field(field)
-  // With a scale per point, in units of the smallest: every region is sampled at least as finely.
-  , Spacing(field.parameters().deltaLattice *
-      (field.index().hasScales() ? field.index().minScale() : field.parameters().h))
+  , Spacing(spacingFor(field.index(), field.parameters()))
   , Planar(field.index().dimension() == 2)
 {
 }
@@ -299,6 +303,40 @@ DeltaJet DeltaLattice::jet(const Vec3& y, const Vec3& a, Workspace& ws) const
   }
   out.curvature = a.dot(H * a);
   return out;
+}
+
+std::vector<std::uint64_t> latticeBrickKeys(
+  const std::vector<Vec3>& points, const PointIndex& index, const SurfaceParameters& params)
+{
+  std::vector<std::uint64_t> keys;
+  const double side = LatticeCache::BrickCells * DeltaLattice::spacingFor(index, params);
+  if (!(side > 0.0))
+  {
+    return keys;
+  }
+  keys.reserve(points.size());
+  const bool planar = index.dimension() == 2;
+  constexpr std::uint64_t mask = (std::uint64_t{ 1 } << 21) - 1;
+  auto coordinate = [&](double x) {
+    // Clamped far beyond any cloud (1e15 bricks), so the conversion is defined; then wrapped.
+    const double b = std::clamp(std::floor(x / side), -1e15, 1e15);
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(b)) & mask;
+  };
+  for (const Vec3& p : points)
+  {
+    if (isFinite(p))
+    {
+      keys.push_back(coordinate(p.x()) | coordinate(p.y()) << 21 | (planar ? 0 : coordinate(p.z())) << 42);
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  return keys;
+}
+
+bool latticeServes(std::size_t starts, std::size_t bricks)
+{
+  return static_cast<double>(starts) >= LatticeStartsPerBrick * static_cast<double>(bricks);
 }
 
 } // namespace pss

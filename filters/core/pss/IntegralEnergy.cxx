@@ -126,7 +126,7 @@ IntegralEnergy::PlaneIntegral IntegralEnergy::sum(
   Vec3 windowGradient = Vec3::Zero();
   const double h = windowScale(origin, windowGradient, ws);
   const bool planar = Index.dimension() == 2;
-  const bool lattice = Params.deltaLattice > 0.0;
+  const bool lattice = Params.deltaLattice > 0.0 && !ws.exactDelta;
   PlaneIntegral out;
   // The node at in-plane coordinates w = (u, v) (units of h) adds weight * F(delta), F = delta^p.
   // Moving the plane by t along a moves every node by t a; tilting a by s (tilted()'s
@@ -546,7 +546,7 @@ DirectionFit IntegralDirection::fit(const Vec3& x, DirectionMemory& memory, Work
   Across across;
   Direction result;
   bool decided = false;
-  if (Params.deltaLattice > 0.0)
+  if (Params.deltaLattice > 0.0 && !ws.exactDelta)
   {
     across = leastEnergyOrthogonalTo(x, least.n, acrossStart, true, ws);
     result = finishDirection(least.n, Integral.roughValue(x, least.n, ws), across.value, Params.minStability);

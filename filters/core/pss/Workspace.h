@@ -98,6 +98,9 @@ struct Workspace
   PointIndex::LeafRanges leaves;
   /// The delta lattice's nodes computed so far (SurfaceParameters::deltaLattice > 0).
   LatticeCache lattice;
+  /// Set by a caller whose start set the lattice does not serve (latticeServes): delta is then
+  /// evaluated exactly, as with SurfaceParameters::deltaLattice 0.
+  bool exactDelta = false;
 
   /// Not a cache but a report: set (never cleared by the core) when an evaluation needed cloud
   /// points beyond the index's complete region (PointIndex::setCompleteRegion), so that its result

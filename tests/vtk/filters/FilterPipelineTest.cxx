@@ -8,7 +8,9 @@
  *   surface of a smooth curve);
  * - on a straight line (2D) and a plane (3D) the projection moves start points straight onto the
  *   shape: Displacement = end - start, Normal = the shape's normal, point data passed through,
- *   one projection line per valid start point.
+ *   one projection line per valid start point;
+ * - the integral definition's filter projects a scattered start set on the exact path (bitwise
+ *   DeltaLatticeSpacing 0's output) and a dense one with the lattice.
  */
 #include "ErrorObserver.h"
 #include "FilterTestUtilities.h"
@@ -348,4 +350,46 @@ TEST(FilterProjection, PlaneCloudExplicitStartPoints3D)
     starts.push_back({ -1.5 + 0.4 * k, 1.0 - 0.3 * k, (k % 2 ? -1.0 : 1.0) * (0.2 + 0.3 * k) * h });
   }
   CheckStraightProjection(vtkPointSetSurfaceCloudSource::PLANE, 3, 10.0, 3000, h, 2, starts, -1);
+}
+
+// The rule on the whole start set (pss::latticeServes): 64 starts 8 h apart, one per lattice
+// brick, take the exact path; 64 starts inside one brick take the lattice.
+TEST(FilterPipeline, ScatteredStartsOfTheIntegralDefinitionTakeTheExactPath)
+{
+  vtkNew<vtkPointSetSurfaceCloudSource> source;
+  source->SetSceneToPlane();
+  source->SetDimension(3);
+  source->SetSize(80.0);
+  source->SetNumberOfPoints(25600); // spacing h / 2
+  source->SetNoise(0.02);
+  source->Update();
+  std::vector<Point> scattered, dense;
+  for (int k = 0; k < 64; ++k)
+  {
+    scattered.push_back({ 8.0 * (k % 8) - 28.0, 8.0 * (k / 8) - 28.0, 0.4 });
+    dense.push_back({ 0.5 + 0.4 * (k % 8), 0.5 + 0.4 * (k / 8), 0.4 });
+  }
+  auto project = [&](const std::vector<Point>& starts, double spacing) {
+    vtkNew<vtkPointSetSurfaceProjection> projection;
+    projection->GetSurface()->SetVariantToIntegral();
+    projection->GetSurface()->AutomaticScaleOff();
+    projection->GetSurface()->SetScaleFactor(1.0);
+    projection->GetSurface()->SetDeltaLatticeSpacing(spacing);
+    projection->SetInputConnection(0, source->GetOutputPort());
+    projection->SetStartPointsData(MakePoints(starts));
+    projection->Update();
+    std::vector<double> out;
+    vtkPolyData* pd = projection->GetOutput();
+    for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+    {
+      double x[3];
+      pd->GetPoint(i, x);
+      out.insert(out.end(), x, x + 3);
+    }
+    return out;
+  };
+  const std::vector<double> scatteredExact = project(scattered, 0.0);
+  ASSERT_EQ(scatteredExact.size(), 3 * scattered.size());
+  EXPECT_EQ(project(scattered, 0.5), scatteredExact);
+  EXPECT_NE(project(dense, 0.5), project(dense, 0.0));
 }
