@@ -712,7 +712,7 @@ int Mesh(const std::vector<std::string>& args)
   });
   if (run.verbose)
   {
-    std::fprintf(stderr, "pss: mesh stages: %s (%s procedure)\n", mesher->GetTimingReport(), mesher->GetUsedProcedure() == 1 ? "plane" : "extremal");
+    std::fprintf(stderr, "pss: mesh stages: %s (%s procedure)\n", mesher->GetTimingReport(), mesher->GetUsedProcedure() == vtkPointSetSurfaceMesher::PLANE ? "plane" : "extremal");
   }
   SummarizeMesh(run, mesher->GetOutput());
   Write(run, mesher->GetOutput(), run.output);

@@ -24,9 +24,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <iostream>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <string>
 
@@ -79,6 +79,27 @@ vtkSmartPointer<vtkPolyData> Points(const std::vector<std::array<double, 3>>& xy
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(points);
   return pd;
+}
+
+// True when @p a and @p b have the same points, bit for bit, and at least one.
+bool SamePoints(vtkPolyData* a, vtkPolyData* b)
+{
+  if (a->GetNumberOfPoints() != b->GetNumberOfPoints() || a->GetNumberOfPoints() == 0)
+  {
+    return false;
+  }
+  for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    double q[3];
+    a->GetPoint(i, p);
+    b->GetPoint(i, q);
+    if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2])
+    {
+      return false;
+    }
+  }
+  return true;
 }
 
 } // namespace
@@ -154,32 +175,15 @@ TEST(MeshFilter, AutomaticProcedureFollowsTheScale)
     EXPECT_EQ(FieldValue(out, "Procedure"), static_cast<double>(used));
     return out;
   };
-  auto samePoints = [](vtkPolyData* a, vtkPolyData* b) {
-    if (a->GetNumberOfPoints() != b->GetNumberOfPoints() || a->GetNumberOfPoints() == 0)
-    {
-      return false;
-    }
-    for (vtkIdType i = 0; i < a->GetNumberOfPoints(); ++i)
-    {
-      double p[3], q[3];
-      a->GetPoint(i, p);
-      b->GetPoint(i, q);
-      if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2])
-      {
-        return false;
-      }
-    }
-    return true;
-  };
   const int com = vtkPointSetSurface::CENTER_OF_MASS;
   int used = -1, explicitUsed = -1;
   vtkSmartPointer<vtkPolyData> automatic = meshWith(vtkPointSetSurfaceMesher::AUTOMATIC, false, com, used);
   EXPECT_EQ(used, vtkPointSetSurfaceMesher::EXTREMAL) << "one h";
-  EXPECT_TRUE(samePoints(automatic, meshWith(vtkPointSetSurfaceMesher::EXTREMAL, false, com, explicitUsed)));
+  EXPECT_TRUE(SamePoints(automatic, meshWith(vtkPointSetSurfaceMesher::EXTREMAL, false, com, explicitUsed)));
 
   automatic = meshWith(vtkPointSetSurfaceMesher::AUTOMATIC, true, com, used);
   EXPECT_EQ(used, vtkPointSetSurfaceMesher::PLANE) << "the centre of mass with a scale per point";
-  EXPECT_TRUE(samePoints(automatic, meshWith(vtkPointSetSurfaceMesher::PLANE, true, com, explicitUsed)));
+  EXPECT_TRUE(SamePoints(automatic, meshWith(vtkPointSetSurfaceMesher::PLANE, true, com, explicitUsed)));
   EXPECT_EQ(FieldValue(automatic, "Components"), 1.0);
   const double h = FieldValue(automatic, "ScaleFactor");
   double farthest = 0.0;
@@ -209,16 +213,7 @@ TEST(MeshFilter, SameOnOneAndTwoThreads)
   vtkSmartPointer<vtkPolyData> two = Mesh(cloud, 1.0);
   ASSERT_EQ(one->GetNumberOfPoints(), two->GetNumberOfPoints());
   ASSERT_EQ(one->GetNumberOfPolys(), two->GetNumberOfPolys());
-  for (vtkIdType i = 0; i < one->GetNumberOfPoints(); ++i)
-  {
-    double a[3];
-    double b[3];
-    one->GetPoint(i, a);
-    two->GetPoint(i, b);
-    ASSERT_EQ(a[0], b[0]); // bitwise
-    ASSERT_EQ(a[1], b[1]);
-    ASSERT_EQ(a[2], b[2]);
-  }
+  ASSERT_TRUE(SamePoints(one, two)); // bitwise
   vtkIdType na = 0;
   vtkIdType nb = 0;
   const vtkIdType* ia = nullptr;
