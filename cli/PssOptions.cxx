@@ -99,6 +99,18 @@ double ToDouble(const std::string& flag, const std::string& text)
   return v;
 }
 
+double ToMultipleOfH(const std::string& flag, const std::string& text, double lo, double hi)
+{
+  const double x = ToDouble(flag, text);
+  if (!(x >= lo && x <= hi))
+  {
+    std::ostringstream msg;
+    msg << "--" << flag << " must be within [" << lo << ", " << hi << "] (in units of h), not " << text;
+    throw std::runtime_error(msg.str());
+  }
+  return x;
+}
+
 int ToInt(const std::string& flag, const std::string& text)
 {
   char* end = nullptr;

@@ -659,21 +659,12 @@ int Mesh(const std::vector<std::string>& args)
   AddCommonOptions(t, run);
   AddSurfaceOptions(t, mesher->GetSurface());
   AddViewpointOption(t, mesher);
-  // The filter clamps (VTK's convention); the command line refuses what it would change.
-  auto inRange = [](const char* name, const std::string& v, double lo, double hi) {
-    const double x = pss_cli::ToDouble(name, v);
-    if (!(x >= lo && x <= hi))
-    {
-      std::ostringstream msg;
-      msg << "--" << name << " must be within [" << lo << ", " << hi << "] (in units of h), not " << v;
-      throw std::runtime_error(msg.str());
-    }
-    return x;
-  };
   t.Value("cell", "C", "grid cell size, in h, within [0.05, 100] (default 1)",
-    [&](const std::string& v) { mesher->SetCellSize(inRange("cell", v, 0.05, 100.0)); });
+    [&](const std::string& v) { mesher->SetCellSize(pss_cli::ToMultipleOfH("cell", v, 0.05, 100.0)); });
   t.Value("band", "B", "visit cells within B h of the cloud, within [0.1, 100] (default 1)",
-    [&](const std::string& v) { mesher->SetBand(inRange("band", v, 0.1, 100.0)); });
+    [&](const std::string& v) { mesher->SetBand(pss_cli::ToMultipleOfH("band", v, 0.1, 100.0)); });
+  t.Switch("regular-cells", "one grid of cells at the typical h even with a scale per point (default: cells follow h_i)",
+    [&]() { mesher->AdaptiveCellsOff(); });
   t.Switch("no-projection", "leave the vertices at the grid's zero crossings of g (default: projected)",
     [&]() { mesher->ProjectVerticesOff(); });
   t.Value("procedure", "NAME", "extremal | plane | automatic: how the vertices are projected (default automatic: plane for com with point scales, else extremal)",

@@ -127,6 +127,8 @@ void AddStatistics(const pss::MeshStatistics& st, vtkFieldData* fd)
 {
   const std::pair<const char*, long long> counts[] = {
     { "BandCells", static_cast<long long>(st.bandCells) },
+    { "CellLevels", static_cast<long long>(st.cellLevels) },
+    { "HangingVertices", static_cast<long long>(st.hangingVertices) },
     { "GridVertices", static_cast<long long>(st.gridVertices) },
     { "Crossings", static_cast<long long>(st.crossings) },
     { "DroppedVertices", static_cast<long long>(st.droppedVertices) },
@@ -237,6 +239,7 @@ int vtkPointSetSurfaceMesher::RequestData(
     }
   }
   options.cellSize = this->CellSize;
+  options.adaptiveCells = this->AdaptiveCells;
   options.band = this->Band;
   options.projectVertices = this->ProjectVertices;
   options.maxVertexTravel = this->MaxVertexTravel;
@@ -392,6 +395,7 @@ void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "CellSize: " << this->CellSize << "\n";
+  os << indent << "AdaptiveCells: " << (this->AdaptiveCells ? "On" : "Off") << "\n";
   os << indent << "Band: " << this->Band << "\n";
   os << indent << "ProjectVertices: " << (this->ProjectVertices ? "On" : "Off") << "\n";
   const char* procedures[] = { "Extremal", "Plane", "Automatic" };

@@ -18,7 +18,7 @@
  * `DistanceToCloud`, `NormalAngle`, `StartAngle`, `StartStability` (the classifier's evidence for
  * the crossing that became the vertex), `Displacement` (from the grid crossing to the vertex),
  * `Iterations`, `StopReason`. Field data: `ScaleFactor`, `Dimension`, `CellSize`, `Band` and the
- * counts `BandCells`, `GridVertices`, `Crossings`, `DroppedVertices`, `MaximumCrossings`,
+ * counts `BandCells`, `CellLevels`, `HangingVertices` (adaptive cells), `GridVertices`, `Crossings`, `DroppedVertices`, `MaximumCrossings`,
  * `SeamSimplices`, `FoldedTriangles`, `UndefinedGridVertices` (why parts are missing),
  * `RemovedPieces`, `CoveredPieces`, `ClosedHoles`, `Components`, `BoundaryEdges`,
  * `NonManifoldEdges`, `EulerCharacteristic`.
@@ -88,6 +88,18 @@ public:
    */
   vtkSetClampMacro(Band, double, 0.1, 100.0);
   vtkGetMacro(Band, double);
+  ///@}
+
+  ///@{
+  /**
+   * With a scale per point, cells that follow it (default on): where h_i is 2^L times the typical
+   * h or more, cells 2^L times CellSize * h (at most 64 times), in a balanced octree whose cells
+   * of two sizes meet without cracks (docs/mesh.md). Cells are never finer than CellSize * h. Off,
+   * or with one h, one grid of CellSize * h. Field data CellLevels says how many sizes ran.
+   */
+  vtkSetMacro(AdaptiveCells, bool);
+  vtkGetMacro(AdaptiveCells, bool);
+  vtkBooleanMacro(AdaptiveCells, bool);
   ///@}
 
   ///@{
@@ -250,6 +262,7 @@ protected:
 #endif
 
   double CellSize = 1.0;
+  bool AdaptiveCells = true;
   double Band = 1.0;
   bool ProjectVertices = true;
   int Procedure = AUTOMATIC;

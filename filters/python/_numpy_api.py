@@ -275,7 +275,8 @@ def _vector(what, value):
 
 def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0, point_scales="automatic",
          point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5,
-         min_stability=1e-5, cell=1.0, band=1.0, project_vertices=True, procedure="automatic", max_distance=1.0,
+         min_stability=1e-5, cell=1.0, band=1.0, adaptive_cells=True, project_vertices=True, procedure="automatic",
+         max_distance=1.0,
          max_normal_angle=30.0, max_border_offset=-1.0, max_vertex_travel=2.0, max_seam_angle=80.0, max_fold_angle=60.0,
          max_hole_edges=100, min_piece_area=10.0, covered_piece_area=10.0, max_band_cells=1 << 24, threads=0, progress=None,
          nonfinite="raise", as_polydata=False):
@@ -296,6 +297,10 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
         Grid cell size, in h (0.05 to 100).
     band : float
         Visit the cells within band * h of the cloud (0.1 to 100).
+    adaptive_cells : bool
+        With a scale per point, cells that grow with h_i (a balanced octree; the default); False
+        keeps one grid of cell * h (``pss mesh --regular-cells``). ``info["CellLevels"]`` says how
+        many cell sizes ran.
     project_vertices : bool
         Move the vertices onto the surface (default); False leaves them at the grid's crossings
         (``pss mesh --no-projection``).
@@ -336,6 +341,7 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
                        min_stability)
     _set(mesher, "CellSize", _number("cell", cell), "cell")
     _set(mesher, "Band", _number("band", band), "band")
+    mesher.SetAdaptiveCells(bool(adaptive_cells))
     mesher.SetProjectVertices(bool(project_vertices))
     mesher.SetProcedure(_choice("procedure", procedure, _PROCEDURES + ("automatic",)))
     for prop, keyword, value, integer in (("MaxDistance", "max_distance", max_distance, False),

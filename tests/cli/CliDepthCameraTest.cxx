@@ -149,3 +149,27 @@ TEST(Cli, GenerateDepthCamera)
     EXPECT_NE(r.output.find("--image expects"), std::string::npos) << r.output;
   }
 }
+
+// pss mesh on a depth frame: cells that follow the scale per point by default, one grid with
+// --regular-cells; both one crack-free surface per object.
+TEST(Cli, MeshCellsFollowTheScaleUnlessRegular)
+{
+  const std::string frame = TempPath("small-depth-camera.vtp");
+  CommandResult r = RunCommand(Pss() + " generate --scene depth-camera --image 160x120 -o " + frame);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto levels = [&](const std::string& flags, const std::string& name) {
+    const std::string out = TempPath(name);
+    const CommandResult m = RunCommand(Pss() + " mesh " + frame + " --threads 2 " + flags + " -o " + out);
+    EXPECT_EQ(m.exitCode, 0) << m.output;
+    vtkSmartPointer<vtkPolyData> mesh = ReadFrame(out);
+    vtkDataArray* cellLevels = mesh->GetFieldData()->GetArray("CellLevels");
+    vtkDataArray* nonManifold = mesh->GetFieldData()->GetArray("NonManifoldEdges");
+    EXPECT_NE(cellLevels, nullptr);
+    EXPECT_NE(nonManifold, nullptr);
+    EXPECT_GT(mesh->GetNumberOfPolys(), 1000);
+    EXPECT_EQ(nonManifold ? nonManifold->GetComponent(0, 0) : -1.0, 0.0);
+    return cellLevels ? cellLevels->GetComponent(0, 0) : 0.0;
+  };
+  EXPECT_GT(levels("", "adaptive-cells.vtp"), 1.0);
+  EXPECT_EQ(levels("--regular-cells", "regular-cells.vtp"), 1.0);
+}

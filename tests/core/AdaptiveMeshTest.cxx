@@ -14,6 +14,8 @@
 #include <iostream>
 #include <map>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace
@@ -32,11 +34,11 @@ double medianScale(const PointIndex& index)
   return h[h.size() / 2];
 }
 
-SurfaceMesh meshWithScales(PointIndex& index, double multiplier, const MeshOptions& options = {})
+SurfaceMesh meshWithScales(PointIndex& index, double multiplier, const MeshOptions& options = {}, int threads = 0)
 {
   index.setScales(estimateLocalScales(index, 10, multiplier));
   auto surface = makeSurface(Variant::CenterOfMass, index, params(medianScale(index)));
-  return extractSurfaceMesh(*surface, options, 0);
+  return extractSurfaceMesh(*surface, options, threads);
 }
 
 // Edges used by one triangle only, as (vertex, vertex) pairs.
@@ -96,6 +98,56 @@ TEST(AdaptiveMesh, TenfoldGradedPlaneIsOnePieceOnThePlane)
   }
   EXPECT_EQ(inside, 0u) << "boundary edges inside the patch";
   EXPECT_EQ(st.boundaryEdges, boundaryEdges(mesh).size());
+  // The cells follow h_i: several sizes, meeting at hanging corners (a crack or a T-junction where
+  // they meet would be a boundary edge inside the patch).
+  std::cout << "cell levels " << st.cellLevels << ", band cells " << st.bandCells << ", hanging corners "
+            << st.hangingVertices << "\n";
+  EXPECT_GE(st.cellLevels, 3u);
+  EXPECT_GT(st.hangingVertices, 100u);
+  // The same bytes on one thread and on two.
+  const SurfaceMesh single = meshWithScales(index, 1.0, {}, 1);
+  const SurfaceMesh dual = meshWithScales(index, 1.0, {}, 2);
+  ASSERT_EQ(single.points.size(), dual.points.size());
+  EXPECT_TRUE(std::equal(single.points.begin(), single.points.end(), dual.points.begin()));
+  EXPECT_EQ(single.triangles, dual.triangles);
+  // One grid when asked: more cells, no hanging corner.
+  MeshOptions regular;
+  regular.adaptiveCells = false;
+  const MeshStatistics one = meshWithScales(index, 1.0, regular).statistics;
+  EXPECT_EQ(one.cellLevels, 1u);
+  EXPECT_EQ(one.hangingVertices, 0u);
+  EXPECT_GT(one.bandCells, st.bandCells);
+}
+
+// The same in 2D: a circle of radius 20 whose spacing grows tenfold from one side to the other
+// is one closed polyline on the circle, with cells of several sizes (a quadtree).
+TEST(AdaptiveMesh, TenfoldGradedCircleIsOneClosedCurve)
+{
+  const double radius = 20.0;
+  std::vector<Vec3> pts;
+  // Spacing 0.04 at angle 0 growing smoothly to 0.4 at angle pi and back.
+  for (double angle = 0.0; angle < 2.0 * kPi; angle += 0.002 * std::pow(10.0, 0.5 * (1.0 - std::cos(angle))))
+  {
+    pts.emplace_back(radius * std::cos(angle), radius * std::sin(angle), 0.0);
+  }
+  PointIndex index(pts, 2);
+  const SurfaceMesh mesh = meshWithScales(index, 1.0);
+  const MeshStatistics& st = mesh.statistics;
+  std::cout << "points " << index.size() << ", segments " << mesh.segments.size() << ", cell levels "
+            << st.cellLevels << ", hanging corners " << st.hangingVertices << "\n";
+  EXPECT_GE(st.cellLevels, 2u);
+  EXPECT_GT(st.hangingVertices, 0u);
+  EXPECT_EQ(st.components, 1u);
+  EXPECT_EQ(st.boundaryEdges, 0u) << "polyline ends";
+  EXPECT_EQ(st.nonManifoldEdges, 0u);
+  ASSERT_GT(mesh.segments.size(), 50u);
+  double worst = 0.0;
+  for (const Vec3& p : mesh.points)
+  {
+    const double h = index.scale(index.nearest(p).first);
+    worst = std::max(worst, std::abs(p.norm() - radius) / (h * h / radius));
+  }
+  EXPECT_LT(worst, 1.5) << "the largest |r - R| / (h^2 / R)";
 }
 
 // A sphere of radius 20 whose sampling density falls tenfold from the south pole to the north
@@ -131,6 +183,8 @@ TEST(AdaptiveMesh, SphereDenseOnOneSideIsOneClosedPiece)
   EXPECT_EQ(st.boundaryEdges, 0u);
   EXPECT_EQ(st.nonManifoldEdges, 0u);
   EXPECT_EQ(st.eulerCharacteristic, 2);
+  EXPECT_GE(st.cellLevels, 2u);
+  EXPECT_GT(st.hangingVertices, 0u);
   // The centre-of-mass surface of a sphere lies inside it by about h^2 / (2 R) to h^2 / R (the
   // weighted centroid of a curved neighbourhood); with a scale per point, by the local one's.
   double worst = 0.0;
@@ -194,4 +248,29 @@ TEST(AdaptiveMesh, BorderTestStopsTheMeshAtTheCloudsEdge)
             << " h with it\n";
   EXPECT_GT(without, 0.5 * h);
   EXPECT_LT(with, 0.2 * h);
+}
+
+// The octree is refused like the grid: counted level by level, before its cells are allocated.
+TEST(AdaptiveMesh, AbsurdBandsAreRefusedBeforeAllocating)
+{
+  PointIndex index(gradedPlane(0.2, 10.0, 60.0), 3);
+  index.setScales(estimateLocalScales(index, 10, 1.0));
+  auto surface = makeSurface(Variant::CenterOfMass, index, params(medianScale(index)));
+  auto refused = [&](const MeshOptions& o, const std::string& text) {
+    try
+    {
+      SurfaceMesher mesher(*surface, o);
+      ADD_FAILURE() << "accepted; expected: " << text;
+    }
+    catch (const std::invalid_argument& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    }
+  };
+  MeshOptions o;
+  o.maxBandCells = 100;
+  refused(o, "the limit is 100");
+  o = {};
+  o.cellSize = 1e-3; // about 10^10 cells at the finest level
+  refused(o, "more than");
 }

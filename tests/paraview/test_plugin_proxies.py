@@ -210,7 +210,8 @@ SAMPLER_ARRAYS = ["Normal", "Energy", "Delta", "ImplicitG", "Stability", "Extrem
 LINE_ARRAYS = ["Converged", "StopReason", "StartPointId"]
 MESH_ARRAYS = ["Normals", "Stability", "Energy", "DomainLabel", "DistanceToCloud", "NormalAngle", "StartAngle",
                "StartStability", "Displacement", "Iterations", "StopReason"]
-MESH_FIELDS = ["ScaleFactor", "Dimension", "PointScales", "CellSize", "Band", "Procedure", "BandCells", "GridVertices", "Crossings",
+MESH_FIELDS = ["ScaleFactor", "Dimension", "PointScales", "CellSize", "Band", "Procedure", "BandCells", "CellLevels", "HangingVertices",
+               "GridVertices", "Crossings",
                "DroppedVertices", "MaximumCrossings", "SeamSimplices", "FoldedTriangles", "RemovedPieces", "CoveredPieces", "ClosedHoles",
                "UndefinedGridVertices", "Components", "BoundaryEdges", "NonManifoldEdges", "EulerCharacteristic"]
 PASSED = ["DistanceToShape"]  # the start / probe points' own array, passed through
@@ -438,6 +439,20 @@ check(field(got, "CellSize") == 0.7 and field(got, "Band") == 1.5, "Mesher: fiel
 pss("mesh", path("sphere.vtp"), "--h", 3, "--no-projection", "-o", path("mesh_grid.vtp"))
 got = fetch(P["PointSetSurfaceMesh"](Input=reader("sphere.vtp"), AutomaticScale=0, ScaleFactor=3, ProjectVertices=0))
 compare("Mesher vertices on the grid", got, read("mesh_grid.vtp"), MESH_ARRAYS, [], MESH_FIELDS)
+
+# A depth frame (a scale per point, taken automatically): cells that follow it by default, one grid
+# with AdaptiveCells off.
+pss("mesh", path("depth.vtp"), "-o", path("mesh_depth.vtp"))
+got = fetch(P["PointSetSurfaceMesh"](Input=reader("depth.vtp")))
+compare("Mesher depth frame, adaptive cells", got, read("mesh_depth.vtp"), MESH_ARRAYS, [],
+        MESH_FIELDS + ["GridDimensions", "Viewpoint"])
+check(field(got, "CellLevels") > 1 and field(got, "HangingVertices") > 0, "Mesher depth frame: %s cell levels, %s hanging "
+      "corners, expected several levels" % (field(got, "CellLevels"), field(got, "HangingVertices")))
+pss("mesh", path("depth.vtp"), "--regular-cells", "-o", path("mesh_depth_grid.vtp"))
+got = fetch(P["PointSetSurfaceMesh"](Input=reader("depth.vtp"), AdaptiveCells=0))
+compare("Mesher depth frame, one grid", got, read("mesh_depth_grid.vtp"), MESH_ARRAYS, [],
+        MESH_FIELDS + ["GridDimensions", "Viewpoint"])
+check(field(got, "CellLevels") == 1, "Mesher depth frame with AdaptiveCells off: %s cell levels" % field(got, "CellLevels"))
 
 pss("mesh", path("cloud.vtp"), "--variant", "com", "--h", 5, "-o", path("mesh_2d.vtp"))
 got = fetch(P["PointSetSurfaceMesh"](Input=cloud, Variant="Center of Mass", AutomaticScale=0, ScaleFactor=5))

@@ -2,6 +2,7 @@
 #include "pss/SurfaceMesh.h"
 
 #include "pss/Parallel.h"
+#include "pss/SurfaceMeshGrid.h"
 
 #include <Eigen/Geometry>
 
@@ -53,107 +54,8 @@ void MeshOptions::validate() const
   domain.validate();
 }
 
-namespace
-{
-
-using Key = std::uint64_t;
-using Coords = std::array<long long, 3>;
-
-// Keys of a grid of size S, with the axes ordered fastest first by `order`.
-struct KeyOrder
-{
-  std::array<int, 3> order;
-  Coords size;
-
-  Key encode(const Coords& c) const
-  {
-    return (static_cast<Key>(c[order[2]]) * size[order[1]] + c[order[1]]) * size[order[0]] + c[order[0]];
-  }
-  Coords decode(Key k) const
-  {
-    Coords c{};
-    c[order[0]] = static_cast<long long>(k % size[order[0]]);
-    k /= size[order[0]];
-    c[order[1]] = static_cast<long long>(k % size[order[1]]);
-    c[order[2]] = static_cast<long long>(k / size[order[1]]);
-    return c;
-  }
-};
-
-// Calls visit(first, last) for the maximal runs of keys [first, last] covered by the sorted @p keys
-// each widened by [-low, +high] along the fastest axis of @p o (clamped to the grid), in order.
-template <class Visit>
-void forEachWidenedRun(const std::vector<Key>& keys, const KeyOrder& o, long long low, long long high, Visit&& visit)
-{
-  const Key width = static_cast<Key>(o.size[o.order[0]]);
-  std::size_t i = 0;
-  while (i < keys.size())
-  {
-    const Key line = keys[i] / width;
-    const Key base = line * width;
-    long long first = std::max(0LL, static_cast<long long>(keys[i] % width) - low);
-    long long last = std::min(static_cast<long long>(width) - 1, static_cast<long long>(keys[i] % width) + high);
-    for (++i; i < keys.size() && keys[i] / width == line; ++i)
-    {
-      const long long pos = static_cast<long long>(keys[i] % width);
-      if (pos - low > last + 1)
-      {
-        visit(base + first, base + last);
-        first = std::max(0LL, pos - low);
-      }
-      last = std::min(static_cast<long long>(width) - 1, pos + high);
-    }
-    visit(base + first, base + last);
-  }
-}
-
-// Re-keys @p keys (in order @p from) by @p to, sorted.
-std::vector<Key> rekey(const std::vector<Key>& keys, const KeyOrder& from, const KeyOrder& to)
-{
-  std::vector<Key> out(keys.size());
-  std::transform(keys.begin(), keys.end(), out.begin(), [&](Key k) { return to.encode(from.decode(k)); });
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-// Widens every key along each axis in turn (a separable dilation of the set of cells), ending in
-// the canonical order (x fastest). Refuses, before allocating, a result above @p limit keys.
-std::vector<Key> widen(std::vector<Key> keys, const Coords& size, int dimension, long long low, long long high,
-  std::size_t limit, const std::string& what)
-{
-  KeyOrder current{ { 0, 1, 2 }, size };
-  for (int axis = dimension - 1; axis >= 0; --axis)
-  {
-    KeyOrder next{ { axis, axis == 0 ? 1 : 0, axis == 2 ? 1 : 2 }, size };
-    keys = rekey(keys, current, next);
-    std::size_t count = 0;
-    forEachWidenedRun(keys, next, low, high, [&](Key a, Key b) { count += static_cast<std::size_t>(b - a + 1); });
-    if (count > limit)
-    {
-      std::ostringstream msg;
-      msg << "the mesh " << what << " would have more than " << count << " cells (the limit is " << limit
-          << "): use a larger cell size or a narrower band";
-      throw std::invalid_argument(msg.str());
-    }
-    std::vector<Key> widened;
-    widened.reserve(count);
-    forEachWidenedRun(keys, next, low, high, [&](Key a, Key b) {
-      for (Key k = a; k <= b; ++k)
-      {
-        widened.push_back(k);
-      }
-    });
-    keys = std::move(widened);
-    current = next;
-  }
-  if (current.order != std::array<int, 3>{ { 0, 1, 2 } })
-  {
-    keys = rekey(keys, current, KeyOrder{ { 0, 1, 2 }, size });
-  }
-  return keys;
-}
-
-} // namespace
+using grid::Coords;
+using grid::KeyOrder;
 
 MeshFrame MeshFrame::of(const SurfaceDefinition& surface)
 {
@@ -164,7 +66,11 @@ MeshFrame MeshFrame::of(const SurfaceDefinition& surface)
 SurfaceMesher::SurfaceMesher(const SurfaceDefinition& surface, const MeshOptions& options)
   : SurfaceMesher(MeshFrame::of(surface), options)
 {
-  buildBand(cellKeysOf(surface.index().points()));
+  const PointIndex& index = surface.index();
+  if (!(Options.adaptiveCells && index.hasScales() && buildAdaptiveBand(index)))
+  {
+    buildBand(cellKeysOf(index.points()));
+  }
   useSurface(surface);
 }
 
@@ -175,7 +81,13 @@ SurfaceMesher::SurfaceMesher(const MeshFrame& frame, const MeshOptions& options)
   Options.validate();
   Dimension = frame.dimension;
   Cell = Options.cellSize * frame.h;
-  sizeGrid();
+  const double ratio = Options.band / Options.cellSize;
+  if (ratio > 1e5)
+  {
+    throw std::invalid_argument("the mesh band is more than 1e5 cells wide: use a larger cell size");
+  }
+  Reach = static_cast<long long>(std::ceil(ratio));
+  sizeGrid(Reach + 1);
 }
 
 void SurfaceMesher::useSurface(const SurfaceDefinition& surface)
@@ -250,14 +162,8 @@ void SurfaceMesher::linkNeighbours()
   }
 }
 
-void SurfaceMesher::sizeGrid()
+void SurfaceMesher::sizeGrid(long long margin)
 {
-  const double ratio = Options.band / Options.cellSize;
-  if (ratio > 1e5)
-  {
-    throw std::invalid_argument("the mesh band is more than 1e5 cells wide: use a larger cell size");
-  }
-  Reach = static_cast<long long>(std::ceil(ratio));
   // Axis lengths leave room for the band and the cells' far corners on either side.
   std::ostringstream dims;
   for (int a = 0; a < 3; ++a)
@@ -267,7 +173,7 @@ void SurfaceMesher::sizeGrid()
       Size[a] = 1;
       continue;
     }
-    const double cells = std::floor((Frame.boundsMax[a] - Frame.boundsMin[a]) / Cell) + 2.0 * Reach + 3.0;
+    const double cells = std::floor((Frame.boundsMax[a] - Frame.boundsMin[a]) / Cell) + 2.0 * static_cast<double>(margin) + 1.0;
     dims << (a > 0 ? " x " : "") << cells;
     if (!(cells <= static_cast<double>(1LL << 20)))
     {
@@ -275,7 +181,7 @@ void SurfaceMesher::sizeGrid()
         " cells, more than 2^20 along an axis: use a larger cell size");
     }
     Size[a] = static_cast<long long>(cells);
-    Origin[a] = Frame.boundsMin[a] - static_cast<double>(Reach + 1) * Cell;
+    Origin[a] = Frame.boundsMin[a] - static_cast<double>(margin) * Cell;
   }
 }
 
@@ -306,8 +212,8 @@ void SurfaceMesher::buildBand(std::vector<std::uint64_t> occupied)
 {
   std::sort(occupied.begin(), occupied.end());
   occupied.erase(std::unique(occupied.begin(), occupied.end()), occupied.end());
-  Cells = widen(std::move(occupied), Size, Dimension, Reach, Reach, Options.maxBandCells, "band");
-  Keys = widen(Cells, Size, Dimension, 0, 1, 2 * Options.maxBandCells, "band's corners");
+  Cells = grid::widen(std::move(occupied), Size, Dimension, Reach, Reach, Options.maxBandCells, "band");
+  Keys = grid::widen(Cells, Size, Dimension, 0, 1, 2 * Options.maxBandCells, "band's corners");
   Values.assign(Keys.size(), CornerValue{});
   linkNeighbours();
   Statistics.bandCells = Cells.size();
@@ -316,6 +222,10 @@ void SurfaceMesher::buildBand(std::vector<std::uint64_t> occupied)
 
 void SurfaceMesher::evaluateVertex(std::size_t i, Workspace& ws)
 {
+  if (!Hanging.empty() && Hanging[i])
+  {
+    return; // interpolated after orient()
+  }
   const Vec3 x = positionOf(Keys[i]);
   const Direction d = Surface->direction(x, ws);
   CornerValue& v = Values[i];
@@ -331,10 +241,15 @@ void SurfaceMesher::evaluateVertex(std::size_t i, Workspace& ws)
 std::uint32_t SurfaceMesher::crossingOn(std::uint32_t a, std::uint32_t b, int direction)
 {
   std::uint32_t& slot = CrossingOfEdge[7 * static_cast<std::size_t>(a) + static_cast<std::size_t>(direction - 1)];
-  if (slot != NoIndex)
+  if (slot == NoIndex)
   {
-    return slot;
+    slot = newCrossing(a, b);
   }
+  return slot;
+}
+
+std::uint32_t SurfaceMesher::newCrossing(std::uint32_t a, std::uint32_t b)
+{
   const double fa = Values[a].g * Sign[a];
   const double fb = Values[b].g * Sign[b];
   // Clamped away from the corners so that the crossings of edges sharing a corner stay apart.
@@ -350,9 +265,17 @@ std::uint32_t SurfaceMesher::crossingOn(std::uint32_t a, std::uint32_t b, int di
   {
     c.type = (fb - fa) * along > 0.0 ? ExtremumType::Minimum : ExtremumType::Maximum;
   }
-  slot = static_cast<std::uint32_t>(Crossings.size());
+  // The side of the cells this edge belongs to: its longest extent along an axis, in grid steps.
+  const Coords ca = coordsOf(Keys[a]);
+  const Coords cb = coordsOf(Keys[b]);
+  long long steps = 0;
+  for (int k = 0; k < Dimension; ++k)
+  {
+    steps = std::max(steps, std::abs(cb[k] - ca[k]));
+  }
+  c.cell = Cell * static_cast<double>(steps);
   Crossings.push_back(std::move(c));
-  return slot;
+  return static_cast<std::uint32_t>(Crossings.size() - 1);
 }
 
 void SurfaceMesher::contourSimplex(const std::array<std::uint32_t, 4>& corners, const std::array<int, 4>& bits, int count)
@@ -404,10 +327,11 @@ void SurfaceMesher::contourSimplex(const std::array<std::uint32_t, 4>& corners, 
     (f[k] > 0.0 ? pos[np++] : neg[nn++]) = k;
   }
   // The simplex's corners go up one axis at a time, so the lower end of an edge is the earlier one.
+  const bool adaptive = !CellLevel.empty();
   auto cross = [&](int p, int q) {
     const int lo = std::min(p, q);
     const int hi = std::max(p, q);
-    return crossingOn(corners[lo], corners[hi], bits[hi] & ~bits[lo]);
+    return adaptive ? crossingBetween(corners[lo], corners[hi]) : crossingOn(corners[lo], corners[hi], bits[hi] & ~bits[lo]);
   };
   if (count == 3)
   {
@@ -424,37 +348,78 @@ void SurfaceMesher::contourSimplex(const std::array<std::uint32_t, 4>& corners, 
     Segments.push_back(s);
     return;
   }
-  auto addTriangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    const Vec3 normal =
-      (Crossings[b].point - Crossings[a].point).cross(Crossings[c].point - Crossings[a].point);
-    if (normal.dot(towardPositive) < 0.0)
-    {
-      std::swap(b, c);
-    }
-    Triangles.push_back({ { a, b, c } });
-  };
+  // The contour polygon: its crossings in cyclic order, each on the simplex edge of two corners.
+  std::array<std::array<int, 2>, 4> ends{};
+  int size = 0;
   if (np == 1 || nn == 1)
   {
     const int lone = np == 1 ? pos[0] : neg[0];
-    std::array<int, 3> others{};
-    int m = 0;
     for (int k = 0; k < 4; ++k)
     {
       if (k != lone)
       {
-        others[m++] = k;
+        ends[size++] = { { lone, k } };
       }
     }
-    addTriangle(cross(lone, others[0]), cross(lone, others[1]), cross(lone, others[2]));
-    return;
   }
-  // Two corners on each side: a quadrilateral around the cycle p0-n0, p0-n1, p1-n1, p1-n0.
-  const std::uint32_t q0 = cross(pos[0], neg[0]);
-  const std::uint32_t q1 = cross(pos[0], neg[1]);
-  const std::uint32_t q2 = cross(pos[1], neg[1]);
-  const std::uint32_t q3 = cross(pos[1], neg[0]);
-  addTriangle(q0, q1, q2);
-  addTriangle(q0, q2, q3);
+  else
+  {
+    // Two corners on each side: a quadrilateral around the cycle p0-n0, p0-n1, p1-n1, p1-n0.
+    ends = { { { { pos[0], neg[0] } }, { { pos[0], neg[1] } }, { { pos[1], neg[1] } }, { { pos[1], neg[0] } } } };
+    size = 4;
+  }
+  std::array<std::uint32_t, 4> q{};
+  for (int k = 0; k < size; ++k)
+  {
+    q[k] = cross(ends[k][0], ends[k][1]);
+  }
+  if (adaptive)
+  {
+    // A side of the polygon on a face that finer cells share passes through their crossings.
+    std::vector<std::uint32_t>& loop = Polygon.loop;
+    std::vector<unsigned>& sides = Polygon.sides;
+    std::vector<std::uint32_t>& inside = Polygon.inside;
+    loop.clear();
+    sides.clear();
+    for (int k = 0; k < size; ++k)
+    {
+      const int next = (k + 1) % size;
+      loop.push_back(q[k]);
+      sides.push_back((1u << k) | (1u << ((k + size - 1) % size)));
+      std::array<int, 4> face{ { ends[k][0], ends[k][1], ends[next][0], ends[next][1] } };
+      std::sort(face.begin(), face.end());
+      const auto last = std::unique(face.begin(), face.end());
+      if (last - face.begin() == 3)
+      {
+        crossingsInside({ { corners[face[0]], corners[face[1]], corners[face[2]] } }, q[k], q[next], inside);
+        for (const std::uint32_t c : inside)
+        {
+          loop.push_back(c);
+          sides.push_back(1u << k);
+        }
+      }
+    }
+    if (loop.size() > static_cast<std::size_t>(size))
+    {
+      triangulatePolygon(loop, sides, towardPositive);
+      return;
+    }
+  }
+  addTriangle(q[0], q[1], q[2], towardPositive);
+  if (size == 4)
+  {
+    addTriangle(q[0], q[2], q[3], towardPositive);
+  }
+}
+
+void SurfaceMesher::addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, const Vec3& towardPositive)
+{
+  const Vec3 normal = (Crossings[b].point - Crossings[a].point).cross(Crossings[c].point - Crossings[a].point);
+  if (normal.dot(towardPositive) < 0.0)
+  {
+    std::swap(b, c);
+  }
+  Triangles.push_back({ { a, b, c } });
 }
 
 void SurfaceMesher::contour()
@@ -472,7 +437,10 @@ void SurfaceMesher::contour()
   {
     orders.push_back(axes);
   } while (std::next_permutation(axes.begin(), axes.begin() + Dimension));
-  CrossingOfEdge.assign(7 * Keys.size(), NoIndex);
+  if (CellLevel.empty())
+  {
+    CrossingOfEdge.assign(7 * Keys.size(), NoIndex);
+  }
   // About one crossing per band cell and two triangles per crossing on a surface (measured: the
   // bunny 1.08 and 1.97): reserved so that they do not grow by copying.
   Crossings.reserve(Cells.size() + Cells.size() / 4);
@@ -481,13 +449,13 @@ void SurfaceMesher::contour()
     Triangles.reserve(2 * Crossings.capacity());
   }
   std::array<std::uint32_t, 8> corner{};
-  for (const std::uint32_t lowest : CellCorner)
+  for (std::size_t cell = 0; cell < Cells.size(); ++cell)
   {
-    // Every corner of a band cell is a grid vertex, so these steps never fall off the band.
     for (int bits = 0; bits < cornersPerCell; ++bits)
     {
-      std::uint32_t v = lowest;
-      for (int a = 0; a < Dimension && v != NoIndex; ++a)
+      std::uint32_t v = CellCorner.empty() ? CellCorners[cell][bits] : CellCorner[cell];
+      // Every corner of a band cell is a grid vertex, so these steps never fall off the band.
+      for (int a = 0; a < Dimension && v != NoIndex && !CellCorner.empty(); ++a)
       {
         v = (bits >> a) & 1 ? Step[2 * a][v] : v;
       }
@@ -516,8 +484,10 @@ void SurfaceMesher::contour()
   // What only the grid stages need goes before the projections, the stage with the largest state.
   Evidence.assign(Crossings.size(), DomainEvidence{});
   CrossingOfEdge = {};
+  CrossingOfPair = {};
   Step = {};
   CellCorner = {};
+  CellCorners = {};
   Values = {};
 }
 

@@ -7,7 +7,15 @@
  * pool, progress and abort, such as the VTK filter, can drive them):
  * 1. band: the cells of a regular grid (spacing cellSize * h) that hold a cloud point, grown by
  *    band * h in every direction. Only these cells are ever visited, so time and memory follow
- *    the surface's area, never the bounding box's volume.
+ *    the surface's area, never the bounding box's volume. With a scale per point (and
+ *    adaptiveCells) the cells follow the local scale instead: a point whose h_i is about 2^L times
+ *    the finest level's asks for cells of level L (side 2^L finest cells), its band is grown by
+ *    band * h_i, and where levels meet the coarser cells are split until every cell's neighbours
+ *    are at most one level apart (a balanced octree, a quadtree in 2D). A corner of a finer cell in
+ *    the middle of a coarser cell's edge or face (a hanging corner) is not evaluated: its n and g
+ *    are interpolated along that edge, or along the face's diagonal, once the coarser corners are
+ *    oriented, so both sides of a face contour the same piecewise-linear g and the crossings on a
+ *    coarser edge are the finer side's (see contour).
  * 2. evaluate: at every corner of a band cell, n(x) and g(x) = d/dt e(x + t n, n) at t = 0
  *    (Eq. 2) for the n as computed (unoriented).
  * 3. orient: n is unoriented, so g's sign is meaningless until the n of neighbouring corners
@@ -18,7 +26,10 @@
  * 4. contour: every band cell is split into d! simplices along its main diagonal (Kuhn's
  *    subdivision: 6 tetrahedra, or 2 triangles in 2D, the same split in every cell, so
  *    neighbouring cells share their faces' triangulations and the contour has no cracks); a
- *    simplex gives a triangle or two (a segment in 2D) where the oriented g changes sign. Simplices
+ *    simplex gives a triangle or two (a segment in 2D) where the oriented g changes sign (Kuhn's
+ *    split of a cell's face refines, at half the size, into the midpoint split of each of its two
+ *    triangles; a coarser cell's triangle whose side runs over such a face takes in the crossings
+ *    the finer side has along it, so no T-junction opens when the vertices move). Simplices
  *    with an undefined n at a corner, or across which n turns by more than maxSeamAngle (a seam
  *    of the orientation, where a sign change of g means nothing), are skipped.
  * 5. classify: every crossing vertex (linearly interpolated on its grid edge) is projected onto
@@ -58,6 +69,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -84,6 +96,9 @@ struct MeshOptions
   /// covers (on the bunny, islands that stray scan points define). 0 keeps them.
   double coveredPieceArea = 10.0;
   std::size_t maxBandCells = std::size_t(1) << 24; ///< refuse larger bands (about 60 bytes a cell)
+  /// With a scale per point, cells of side about cellSize * h_i (levels of a balanced octree, see
+  /// stage 1) instead of one grid of side cellSize * h. Without per-point scales there is one level.
+  bool adaptiveCells = true;
   /// How crossings are projected (Definition 1 by default). The tolerance is 1e-5 h, not the
   /// projection's 1e-6 h: vertices need no better, and the integral energy's steps can hover
   /// around 1e-6 h until the iteration limit (measured on a circle in 2D).
@@ -109,6 +124,8 @@ struct MeshOptions
 struct MeshStatistics
 {
   std::size_t bandCells = 0;          ///< cells visited
+  std::size_t cellLevels = 1;         ///< cell sizes in use (adaptive cells: up to MaxCellLevels)
+  std::size_t hangingVertices = 0;    ///< corners interpolated on a coarser cell's edge or face
   std::size_t gridVertices = 0;       ///< their corners, where n and g were evaluated
   std::size_t undefinedVertices = 0;  ///< corners where n is undefined
   std::size_t seamSimplices = 0;      ///< simplices skipped because n turns too much across them
@@ -206,6 +223,9 @@ public:
   /// The surface the loops evaluate from now on.
   void useSurface(const SurfaceDefinition& surface);
 
+  /// The most cell sizes the adaptive cells use (each twice the next): 7 span a 64-fold spread of h_i.
+  static constexpr int MaxCellLevels = 7;
+
   std::size_t gridVertexCount() const { return Keys.size(); }
   Vec3 gridVertex(std::size_t i) const { return positionOf(Keys[i]); }
   void evaluateVertex(std::size_t i, Workspace& ws);
@@ -254,6 +274,12 @@ private:
     Vec3 point = Vec3::Zero();
     Vec3 reference = Vec3::Zero(); ///< oriented n of the grid edge's end, to orient the result
     ExtremumType type = ExtremumType::None; ///< how g changes along n here (None: edge across n)
+    double cell = 0.0; ///< the side of the cells of its edge: how far its projection may travel
+  };
+  /// A corner in the middle of a coarser cell's edge (or face diagonal) from corner a to corner b.
+  struct HangingCorner
+  {
+    std::uint32_t corner = 0, a = 0, b = 0;
   };
 
   /// The sign that orients the band's corner @p seed, the first of its piece (stage 3).
@@ -262,10 +288,34 @@ private:
   Key keyOf(const std::array<long long, 3>& c) const;
   std::array<long long, 3> coordsOf(Key k) const;
   Vec3 positionOf(Key k) const;
-  void sizeGrid();
+  /// Size and Origin: the cloud's bounds in cells of side Cell, and @p margin cells on every side.
+  void sizeGrid(long long margin);
   void linkNeighbours();
+  /// Stage 1 with a scale per point: the balanced octree's cells and corners and its hanging
+  /// corners. Returns false (and changes nothing) when every point asks for one level.
+  bool buildAdaptiveBand(const PointIndex& index);
+  void findHanging();  ///< HangingCorners: the midpoints of cells' edges and faces that are corners
+  void linkCorners();  ///< Step: the cells' edges between corners that are not hanging
+  /// The hanging corner halfway between corners @p a and @p b, or NoIndex.
+  std::uint32_t midpointOf(std::uint32_t a, std::uint32_t b) const;
+  /// The hanging corners' n and oriented g, from their coarser corners (after orient()).
+  void interpolateHanging();
+  /// The index of the corner with key @p k, or NoIndex.
+  std::uint32_t cornerOf(Key k) const;
+  void contourAdaptive();
   void contourSimplex(const std::array<std::uint32_t, 4>& corners, const std::array<int, 4>& bits, int count);
   std::uint32_t crossingOn(std::uint32_t lower, std::uint32_t upper, int direction);
+  /// The crossing on the cell edge between corners @p a and @p b (adaptive cells), on the half of
+  /// it that changes sign when its midpoint is a hanging corner.
+  std::uint32_t crossingBetween(std::uint32_t a, std::uint32_t b);
+  std::uint32_t newCrossing(std::uint32_t a, std::uint32_t b);
+  /// The crossings the finer cells have inside the triangle of corners @p face (a coarser cell's
+  /// face, split at its edges' hanging midpoints), between crossings @p from and @p to, in order.
+  void crossingsInside(const std::array<std::uint32_t, 3>& face, std::uint32_t from, std::uint32_t to,
+    std::vector<std::uint32_t>& out);
+  /// Triangles of the convex polygon @p loop whose vertex k lies on the sides of bit mask @p sides[k].
+  void triangulatePolygon(const std::vector<std::uint32_t>& loop, const std::vector<unsigned>& sides, const Vec3& towardPositive);
+  void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, const Vec3& towardPositive);
   /// True when a cell of normal @p face (unnormalized) is within maxFoldAngle of @p vertexNormals' sum.
   bool isUnfolded(const Vec3& face, const Vec3& vertexNormals) const;
   /// True when a triangle a, b, c that closes a hole is unfolded, or is a sliver facing @p vertexNormals' side.
@@ -285,14 +335,26 @@ private:
   int Dimension = 3;
   double Cell = 0.0;
   long long Reach = 0; ///< the band's width in cells
+  int Levels = 1;      ///< cell levels: the side of a level-L cell is 2^L Cell
   Vec3 Origin = Vec3::Zero();
   std::array<long long, 3> Size{ { 1, 1, 1 } };
   std::vector<Key> Cells;          ///< band cells, by the key of their lowest corner, sorted
   std::vector<Key> Keys;           ///< their corners, sorted
   std::vector<CornerValue> Values; ///< per corner
-  /// Step[2a][i] / Step[2a+1][i]: the corner one cell up / down axis a from corner i (or none).
+  /// Step[2a][i] / Step[2a+1][i]: the corner one cell up / down axis a from corner i (or none;
+  /// adaptive cells: along the edge of i's cells that ends at a corner that does not hang).
   std::array<std::vector<std::uint32_t>, 6> Step;
   std::vector<std::uint32_t> CellCorner; ///< per band cell: its lowest corner
+  std::vector<std::uint8_t> CellLevel;   ///< per band cell: its level (adaptive cells only)
+  std::vector<std::array<std::uint32_t, 8>> CellCorners; ///< per band cell: its corners (adaptive cells only)
+  std::vector<char> Hanging;             ///< per corner (adaptive cells only)
+  std::vector<HangingCorner> HangingCorners; ///< coarser cells' first
+  std::unordered_map<std::uint64_t, std::uint32_t> CrossingOfPair; ///< adaptive cells: per corner pair
+  struct
+  {
+    std::vector<std::uint32_t> loop, inside;
+    std::vector<unsigned> sides;
+  } Polygon; ///< contourSimplex()'s scratch with adaptive cells
   std::vector<signed char> Sign;   ///< per corner: +1 / -1 after orient(), 0 where undefined
   std::vector<Crossing> Crossings;
   std::vector<DomainEvidence> Evidence; ///< per crossing, from classifyCrossing()
@@ -303,6 +365,8 @@ private:
   std::vector<std::array<std::uint32_t, 2>> Segments;
   std::vector<std::vector<std::uint32_t>> Holes; ///< findHoles(): small holes' vertex loops
   std::vector<Vec3> HoleCentres;                 ///< their vertices' centroids
+  std::vector<double> HoleCell;                  ///< the largest cell side of their vertices
+  std::vector<double> VertexCell;                ///< assemble(): each vertex's cell side
   std::vector<DomainEvidence> HoleEvidence;      ///< evaluateHole(): each centre's projection (more than 3 edges)
   std::vector<double> HoleCloudGapSq;           ///< and its squared distance to the cloud, in local h^2
   MeshStatistics Statistics;

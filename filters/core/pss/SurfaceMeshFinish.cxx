@@ -341,7 +341,7 @@ SurfaceMesh SurfaceMesher::assemble()
     const Crossing& c = Crossings[i];
     const DomainEvidence& ev = Evidence[i];
     const bool inDomain = ev.label == DomainLabel::InDomain;
-    const bool near = (ev.projection.point - c.point).norm() <= Options.maxVertexTravel * Cell;
+    const bool near = (ev.projection.point - c.point).norm() <= Options.maxVertexTravel * c.cell;
     const ExtremumType unwanted = Options.projection.seekMaxima ? ExtremumType::Minimum : ExtremumType::Maximum;
     const bool wanted = c.type != unwanted;
     Statistics.maximumCrossings += wanted ? 0 : 1;
@@ -403,11 +403,13 @@ SurfaceMesh SurfaceMesher::assemble()
   // The kept vertices move down in place (newIndex[i] <= i): the per-crossing arrays become the
   // mesh's without a second copy of the largest one (the evidence).
   std::vector<Vec3> crossing(n);
+  VertexCell.assign(n, 0.0);
   std::size_t kept = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
     if (newIndex[i] != NoIndex)
     {
+      VertexCell[kept] = Crossings[i].cell;
       point[kept] = point[i];
       normal[kept] = normal[i];
       crossing[kept] = Crossings[i].point;
@@ -419,6 +421,7 @@ SurfaceMesh SurfaceMesher::assemble()
   {
     v->resize(kept);
   }
+  VertexCell.resize(kept);
   Evidence.resize(kept);
   mesh.points = std::move(point);
   mesh.normals = std::move(normal);
@@ -614,12 +617,14 @@ void SurfaceMesher::findHoles(const SurfaceMesh& mesh)
     Holes = smallHoles(mesh);
   }
   HoleCentres.assign(Holes.size(), Vec3::Zero());
+  HoleCell.assign(Holes.size(), 0.0);
   for (std::size_t j = 0; j < Holes.size(); ++j)
   {
     const std::vector<std::uint32_t>& hole = Holes[j];
     for (const std::uint32_t v : hole)
     {
       HoleCentres[j] += mesh.points[v] / static_cast<double>(hole.size());
+      HoleCell[j] = std::max(HoleCell[j], v < VertexCell.size() ? VertexCell[v] : Cell);
     }
   }
   HoleEvidence.assign(Holes.size(), DomainEvidence{});
@@ -700,7 +705,7 @@ void SurfaceMesher::closeHoles(SurfaceMesh& mesh)
       ev = HoleEvidence[j];
       const Direction& d = ev.projection.direction;
       fan = ev.label == DomainLabel::InDomain &&
-        (ev.projection.point - centre).norm() <= Options.maxVertexTravel * Cell && d.defined;
+        (ev.projection.point - centre).norm() <= Options.maxVertexTravel * HoleCell[j] && d.defined;
       if (fan)
       {
         apex = Options.projectVertices ? ev.projection.point : centre;

@@ -66,6 +66,38 @@ void SurfaceMesher::orient()
       pushNeighbours(to);
     }
   }
+  interpolateHanging();
+}
+
+void SurfaceMesher::interpolateHanging()
+{
+  // Coarser cells' hanging corners come first: a hanging corner may be the end of a finer cell's
+  // edge whose midpoint hangs in turn.
+  const double seamCos = std::cos(Options.maxSeamAngle * M_PI / 180.0);
+  for (const HangingCorner& h : HangingCorners)
+  {
+    CornerValue& v = Values[h.corner];
+    v = CornerValue{};
+    Sign[h.corner] = 0;
+    const CornerValue& a = Values[h.a];
+    const CornerValue& b = Values[h.b];
+    if (!a.defined || !b.defined || Sign[h.a] == 0 || Sign[h.b] == 0)
+    {
+      continue;
+    }
+    const Vec3 na = a.n * Sign[h.a];
+    const Vec3 nb = b.n * Sign[h.b];
+    const Vec3 sum = na + nb;
+    // Across a seam the coarser cell's simplices are skipped; so are the finer ones at this corner.
+    if (na.dot(nb) < seamCos || !(sum.norm() > 1e-6))
+    {
+      continue;
+    }
+    v.n = sum.normalized();
+    v.g = (a.g * Sign[h.a] + b.g * Sign[h.b]) / 2.0;
+    v.defined = true;
+    Sign[h.corner] = 1;
+  }
 }
 
 } // namespace pss

@@ -203,7 +203,9 @@ int CheckFrameMesh(int procedure)
   std::cout << "farthest triangle centre from the scene: " << farthest << " local h\n";
   EXPECT_LE(farthest, 3.0);
 
-  // Boundary edges, each sorted by the first reason found around its midpoint in the image.
+  // Boundary edges, each sorted by the first reason found in the image within 3 local h of its
+  // midpoint (the scale of the cloud point nearest to it: the cells, and so where the mesh's
+  // border can fall, follow that scale).
   ImageTruth truth;
   truth.pixels = pss::traceDepthImage(truth.camera);
   std::map<std::pair<vtkIdType, vtkIdType>, int> uses;
@@ -225,7 +227,8 @@ int CheckFrameMesh(int procedure)
     const Vec3 m = 0.5 * (PointOf(mesh, edge.first) + PointOf(mesh, edge.second));
     const double column = f * m.x() / m.z() + 0.5 * truth.camera.width;
     const double row = f * m.y() / m.z() + 0.5 * truth.camera.height;
-    const int radius = static_cast<int>(std::ceil(3.0 * h * f / m.z()));
+    const double local = cloudIndex->scale(cloudIndex->nearest(m).first);
+    const int radius = static_cast<int>(std::ceil(3.0 * local * f / m.z()));
     const int why = truth.reason(row, column, radius);
     ++reasons[static_cast<std::size_t>(why < 0 ? 3 : why)];
   }
