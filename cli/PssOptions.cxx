@@ -99,13 +99,13 @@ double ToDouble(const std::string& flag, const std::string& text)
   return v;
 }
 
-double ToMultipleOfH(const std::string& flag, const std::string& text, double lo, double hi)
+double ToNumberIn(const std::string& flag, const std::string& text, double lo, double hi, const std::string& unit)
 {
   const double x = ToDouble(flag, text);
   if (!(x >= lo && x <= hi))
   {
     std::ostringstream msg;
-    msg << "--" << flag << " must be within [" << lo << ", " << hi << "] (in units of h), not " << text;
+    msg << "--" << flag << " must be within [" << lo << ", " << hi << "]" << unit << ", not " << text;
     throw std::runtime_error(msg.str());
   }
   return x;

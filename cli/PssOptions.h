@@ -50,9 +50,10 @@ private:
 /// Strict conversions for flag values; they throw UsageError naming the flag.
 double ToDouble(const std::string& flag, const std::string& text);
 int ToInt(const std::string& flag, const std::string& text);
-/// A number of h within [@p lo, @p hi]: the filters clamp (VTK's convention), the command line
-/// refuses what they would change (std::runtime_error naming the flag and the range).
-double ToMultipleOfH(const std::string& flag, const std::string& text, double lo, double hi);
+/// A number within [@p lo, @p hi] (@p unit, e.g. " (in units of h)", is said in the message): the
+/// filters clamp (VTK's convention), the command line refuses what they would change
+/// (std::runtime_error naming the flag and the range).
+double ToNumberIn(const std::string& flag, const std::string& text, double lo, double hi, const std::string& unit = "");
 /// "NX,NY,NZ" (or "NX,NY" for NZ = 1).
 void ToDimensions(const std::string& flag, const std::string& text, int dims[3]);
 /// "WxH", each in [1, @p largest]: an image's pixels across and down (width, height).

@@ -237,6 +237,10 @@ void AddProjectionOptions(OptionTable& t, vtkPointSetSurfaceProjection* p)
   t.Value("max-travel", "L", "longest line search, in h (default 1000)",
     [p](const std::string& v) { p->SetMaxTravel(pss_cli::ToDouble("max-travel", v)); });
   t.Switch("seek-maxima", "converge to maxima of e along n instead of minima", [p]() { p->SeekMaximaOn(); });
+  t.Switch("propagate-normals", "orient Normal consistently over the end points' neighbours (default: point by point)",
+    [p]() { p->PropagateNormalsOn(); });
+  t.Value("normal-neighbors", "K", "--propagate-normals' graph: K nearest end points, within [1, 100] (default 10)",
+    [p](const std::string& v) { p->SetNormalNeighbors(static_cast<int>(pss_cli::ToNumberIn("normal-neighbors", v, 1, 100))); });
 }
 
 // Draws "[=====     ]  50%" on stderr from an algorithm's ProgressEvent.
@@ -660,9 +664,9 @@ int Mesh(const std::vector<std::string>& args)
   AddSurfaceOptions(t, mesher->GetSurface());
   AddViewpointOption(t, mesher);
   t.Value("cell", "C", "grid cell size, in h, within [0.05, 100] (default 1)",
-    [&](const std::string& v) { mesher->SetCellSize(pss_cli::ToMultipleOfH("cell", v, 0.05, 100.0)); });
+    [&](const std::string& v) { mesher->SetCellSize(pss_cli::ToNumberIn("cell", v, 0.05, 100.0, " (in units of h)")); });
   t.Value("band", "B", "visit cells within B h of the cloud, within [0.1, 100] (default 1)",
-    [&](const std::string& v) { mesher->SetBand(pss_cli::ToMultipleOfH("band", v, 0.1, 100.0)); });
+    [&](const std::string& v) { mesher->SetBand(pss_cli::ToNumberIn("band", v, 0.1, 100.0, " (in units of h)")); });
   t.Switch("regular-cells", "one grid of cells at the typical h even with a scale per point (default: cells follow h_i)",
     [&]() { mesher->AdaptiveCellsOff(); });
   t.Switch("no-projection", "leave the vertices at the grid's zero crossings of g (default: projected)",

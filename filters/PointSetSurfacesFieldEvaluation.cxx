@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PointSetSurfacesFieldEvaluation.h"
 
+
 #include "vtkCellType.h"
 #include "vtkDataSet.h"
 #include "vtkIdList.h"
@@ -9,14 +10,13 @@
 #include "vtkRectilinearGrid.h"
 #include "vtkStructuredGrid.h"
 
+#include "pss/NormalOrientation.h"
 #include "pss/PointIndex.h"
 #include "pss/SurfaceDefinition.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <queue>
-#include <tuple>
 #include <vector>
 
 namespace pss_vtk
@@ -130,13 +130,6 @@ FieldValues FieldEvaluator::Evaluate(const double xIn[3], pss::Workspace& ws, un
 namespace
 {
 
-// Neighbours of every point, compressed (CSR): neighbours of i are Adj[Start[i] .. Start[i+1]).
-struct PointGraph
-{
-  std::vector<vtkIdType> Start;
-  std::vector<vtkIdType> Adj;
-};
-
 // Structured datasets: the 2 * dim axis neighbours (i +- 1, j +- 1, k +- 1).
 bool StructuredDimensions(vtkDataSet* mesh, int dims[3])
 {
@@ -158,7 +151,8 @@ bool StructuredDimensions(vtkDataSet* mesh, int dims[3])
   return false;
 }
 
-PointGraph BuildGraph(vtkDataSet* mesh)
+// Neighbours of every point (a grid's axis neighbours, or points consecutive in a cell).
+pss::NeighbourGraph BuildGraph(vtkDataSet* mesh)
 {
   const vtkIdType n = mesh->GetNumberOfPoints();
   std::vector<std::pair<vtkIdType, vtkIdType>> edges;
@@ -217,20 +211,20 @@ PointGraph BuildGraph(vtkDataSet* mesh)
     }
   }
 
-  PointGraph g;
-  g.Start.assign(static_cast<std::size_t>(n) + 1, 0);
+  pss::NeighbourGraph g;
+  g.start.assign(static_cast<std::size_t>(n) + 1, 0);
   for (const auto& e : edges)
   {
-    ++g.Start[e.first + 1];
-    ++g.Start[e.second + 1];
+    ++g.start[static_cast<std::size_t>(e.first) + 1];
+    ++g.start[static_cast<std::size_t>(e.second) + 1];
   }
-  std::partial_sum(g.Start.begin(), g.Start.end(), g.Start.begin());
-  g.Adj.resize(static_cast<std::size_t>(g.Start.back()));
-  std::vector<vtkIdType> fill(g.Start.begin(), g.Start.end() - 1);
+  std::partial_sum(g.start.begin(), g.start.end(), g.start.begin());
+  g.adjacent.resize(g.start.back());
+  std::vector<std::size_t> fill(g.start.begin(), g.start.end() - 1);
   for (const auto& e : edges)
   {
-    g.Adj[fill[e.first]++] = e.second;
-    g.Adj[fill[e.second]++] = e.first;
+    g.adjacent[fill[static_cast<std::size_t>(e.first)]++] = static_cast<std::uint32_t>(e.second);
+    g.adjacent[fill[static_cast<std::size_t>(e.second)]++] = static_cast<std::uint32_t>(e.first);
   }
   return g;
 }
@@ -244,65 +238,13 @@ vtkIdType PropagateOrientation(vtkDataSet* mesh, double* normals, double* g, con
   {
     return 0;
   }
-  const PointGraph graph = BuildGraph(mesh);
-  auto normal = [&](vtkIdType i) { return Eigen::Map<pss::Vec3>(normals + 3 * i); };
-  auto usable = [&](vtkIdType i) { return normal(i).squaredNorm() > 0.0; };
-
-  // Seeds: the most stable point of each component first.
-  std::vector<vtkIdType> order;
-  order.reserve(static_cast<std::size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    if (usable(i))
-    {
-      order.push_back(i);
-    }
-  }
-  std::stable_sort(order.begin(), order.end(), [&](vtkIdType a, vtkIdType b) { return stability[a] > stability[b]; });
-
-  std::vector<char> done(static_cast<std::size_t>(n), 0);
-  // (weight, point to orient, its already oriented neighbour): the heaviest edge first.
-  using Edge = std::tuple<double, vtkIdType, vtkIdType>;
-  std::priority_queue<Edge> front;
-  auto pushNeighbours = [&](vtkIdType i) {
-    for (vtkIdType k = graph.Start[i]; k < graph.Start[i + 1]; ++k)
-    {
-      const vtkIdType j = graph.Adj[k];
-      if (!done[j] && usable(j))
-      {
-        front.emplace(std::abs(normal(i).dot(normal(j))), j, i);
-      }
-    }
-  };
-  vtkIdType flipped = 0;
-  for (const vtkIdType seed : order)
-  {
-    if (done[seed])
-    {
-      continue;
-    }
-    done[seed] = 1;
-    pushNeighbours(seed);
-    while (!front.empty())
-    {
-      const vtkIdType j = std::get<1>(front.top());
-      const vtkIdType parent = std::get<2>(front.top());
-      front.pop();
-      if (done[j])
-      {
-        continue;
-      }
-      done[j] = 1;
-      if (normal(j).dot(normal(parent)) < 0.0)
-      {
-        normal(j) *= -1.0; // n and g change sign together (see the header)
-        g[j] = -g[j];
-        ++flipped;
-      }
-      pushNeighbours(j);
-    }
-  }
-  return flipped;
+  // Seeds: the most stable point of each component first, kept as it is; n and g change sign
+  // together (see the header).
+  std::vector<std::uint32_t> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return stability[a] > stability[b]; });
+  return static_cast<vtkIdType>(pss::propagateOrientation(
+    BuildGraph(mesh), normals, order, [](std::uint32_t) { return false; }, [&](std::uint32_t i) { g[i] = -g[i]; }));
 }
 
 }

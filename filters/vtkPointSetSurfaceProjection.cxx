@@ -12,6 +12,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkIntArray.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -24,9 +25,11 @@
 #include <cstdint>
 #include <exception>
 #include <numeric>
+#include <optional>
 #include <vector>
 
 #include "pss/ExtremalSurface.h"
+#include "pss/NormalOrientation.h"
 #include "pss/PointIndex.h"
 #include "pss/SurfaceDefinition.h"
 
@@ -172,6 +175,13 @@ int vtkPointSetSurfaceProjection::RequestData(
   const vtkIdType n = starts ? starts->GetNumberOfPoints() : 0;
   vtkPoints* startPoints = n > 0 ? starts->GetPoints() : nullptr;
 
+  // Refused on every rank alike, before anything collective: no rank is left waiting.
+  if (vtkMultiProcessController* controller = this->DistributedController(); controller && this->PropagateNormals)
+  {
+    vtkErrorMacro(<< "PropagateNormals needs every end point on one process, and this run has "
+                  << controller->GetNumberOfProcesses() << " (MPI): turn it off, or run in one process");
+    return 0;
+  }
   // Prepare: the surface (gathered cloud or ghost run) and this rank's first global id.
   pss_vtk::DistributedRun run(this, this->Surface, this->DistributedController(), this->GhostMargin);
   if (!this->PrepareRun(run, inputVector, cloud))
@@ -253,6 +263,10 @@ int vtkPointSetSurfaceProjection::RequestData(
   {
     vtkWarningMacro(<< invalid << " start point(s) have NaN or infinite coordinates: left in place, StopReason 4");
   }
+  if (this->PropagateNormals && !this->OrientOutputNormals(arrays.Points, arrays.Normal->GetPointer(0)))
+  {
+    return 0;
+  }
   output->SetPoints(arrays.Points);
   output->SetVerts(pss_vtk::VertexCells(n));
   vtkPointData* outPD = output->GetPointData();
@@ -297,6 +311,34 @@ bool vtkPointSetSurfaceProjection::OrderStartPoints(vtkPointSet* starts, vtkPoin
   }
 }
 
+bool vtkPointSetSurfaceProjection::OrientOutputNormals(vtkPoints* endPoints, double* normals)
+{
+  try
+  {
+    const int threads = pss_vtk::CoreThreads();
+    const pss::PointIndex index(pss_vtk::ToVectors(endPoints, threads), this->Surface->GetIndex()->dimension(), threads);
+    std::vector<pss::Vec3> oriented(index.size());
+    for (std::size_t i = 0; i < index.size(); ++i)
+    {
+      oriented[i] = Eigen::Map<const pss::Vec3>(normals + 3 * index.originalId(i));
+    }
+    const double* viewpoint = this->OrientationViewpoint();
+    pss::orientNormals(index, oriented,
+      viewpoint ? std::optional<pss::Vec3>(pss::Vec3(viewpoint[0], viewpoint[1], viewpoint[2])) : std::nullopt,
+      static_cast<std::size_t>(this->NormalNeighbors), threads);
+    for (std::size_t i = 0; i < index.size(); ++i)
+    {
+      std::copy(oriented[i].data(), oriented[i].data() + 3, normals + 3 * index.originalId(i));
+    }
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "cannot orient the normals: " << e.what());
+    return false;
+  }
+}
+
 void vtkPointSetSurfaceProjection::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -306,5 +348,7 @@ void vtkPointSetSurfaceProjection::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxTravel: " << this->MaxTravel << "\n";
   os << indent << "SeekMaxima: " << (this->SeekMaxima ? "On" : "Off") << "\n";
   os << indent << "GenerateProjectionLines: " << (this->GenerateProjectionLines ? "On" : "Off") << "\n";
+  os << indent << "PropagateNormals: " << (this->PropagateNormals ? "On" : "Off") << "\n";
+  os << indent << "NormalNeighbors: " << this->NormalNeighbors << "\n";
   os << indent << "GhostMargin: " << this->GhostMargin << "\n";
 }

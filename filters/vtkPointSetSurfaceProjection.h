@@ -12,7 +12,8 @@
  *
  * Output 0: one vertex per start point, at the end of its projection, with the start points'
  * point data passed through and these arrays:
- * - `Normal` (3 doubles): n at the end point, oriented away from the cloud's centroid;
+ * - `Normal` (3 doubles): n at the end point, oriented away from the cloud's centroid (toward the
+ *   viewpoint when there is one), or consistently over the end points with PropagateNormals;
  * - `Energy`: e(x, n(x)) at the end point (LevinMLS may underflow to 0);
  * - `Displacement` (3 doubles): end point minus start point;
  * - `Iterations`, `Converged` (0/1), `Stability` (of n at the end point);
@@ -107,6 +108,26 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Orient `Normal` consistently over the end points instead of point by point: a maximum
+   * spanning tree of |n_i . n_j| over their NormalNeighbors-nearest-neighbour graph (Hoppe et
+   * al.), each connected piece from its highest point (largest z) with its normal up, or with
+   * every normal toward the viewpoint when there is one (pss::orientNormals). The cloud projected
+   * onto itself gives the cloud's oriented normals. Default off. One process only: a distributed
+   * run with it is an error.
+   */
+  vtkSetMacro(PropagateNormals, bool);
+  vtkGetMacro(PropagateNormals, bool);
+  vtkBooleanMacro(PropagateNormals, bool);
+  ///@}
+
+  ///@{
+  /// Neighbours of each end point in PropagateNormals' graph, within [1, 100]. Default 10.
+  vtkSetClampMacro(NormalNeighbors, int, 1, 100);
+  vtkGetMacro(NormalNeighbors, int);
+  ///@}
+
+  ///@{
   /// Fill output 1 with a segment from each start point to its projection. Default off.
   vtkSetMacro(GenerateProjectionLines, bool);
   vtkGetMacro(GenerateProjectionLines, bool);
@@ -173,11 +194,15 @@ protected:
   double MaxTravel = 1000.0;
   bool SeekMaxima = false;
   bool GenerateProjectionLines = false;
+  bool PropagateNormals = false;
+  int NormalNeighbors = 10;
   double GhostMargin = 0.0;
   int GhostRounds = 0;
 
 private:
   // The order to project @p startPoints in (neighbours together); false after an error.
+  /// PropagateNormals: orients @p normals (three per end point) over @p endPoints' graph.
+  bool OrientOutputNormals(vtkPoints* endPoints, double* normals);
   bool OrderStartPoints(vtkPointSet* starts, vtkPointSet* cloud, vtkPoints* startPoints, bool distributed,
     std::vector<std::uint32_t>& order);
 

@@ -32,8 +32,8 @@ __all__ = ["Error", "InputError", "SurfaceWarning", "Result", "VARIANTS", "proje
 def project(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0,
             point_scales="automatic", point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0,
             quadrature=6, delta_lattice=0.5, min_stability=1e-5, procedure="extremal", max_iterations=100,
-            tolerance=1e-6, max_travel=1000.0, seek_maxima=False, threads=0, progress=None, nonfinite="raise",
-            as_polydata=False):
+            tolerance=1e-6, max_travel=1000.0, seek_maxima=False, propagate_normals=False, normal_neighbors=10, threads=0,
+            progress=None, nonfinite="raise", as_polydata=False):
     """Move points onto the point-set surface of a cloud (vtkPointSetSurfaceProjection, ``pss project``).
 
     Parameters
@@ -83,6 +83,14 @@ def project(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, sca
         search, in h.
     seek_maxima : bool
         Converge to maxima of the energy along n instead of minima.
+    propagate_normals : bool
+        Orient ``Normal`` consistently over the end points (a maximum spanning tree of
+        |n_i . n_j| over their ``normal_neighbors`` nearest neighbours, each piece from its
+        highest point with its normal up; toward the viewpoint when there is one) instead of away
+        from the cloud's centroid. ``project(cloud, propagate_normals=True).Normal`` are the
+        cloud's oriented normals.
+    normal_neighbors : int
+        k of that graph (1 to 100).
     threads : int
         Worker threads for this call; 0 (default): every core.
     progress : callable, optional
@@ -119,8 +127,8 @@ def project(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, sca
 def classify(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0,
              point_scales="automatic", point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0,
              quadrature=6, delta_lattice=0.5, min_stability=1e-5, procedure="extremal", max_iterations=100,
-             tolerance=1e-6, max_travel=1000.0, seek_maxima=False, max_distance=1.0, max_normal_angle=30.0, threads=0,
-             progress=None, nonfinite="raise", as_polydata=False):
+             tolerance=1e-6, max_travel=1000.0, seek_maxima=False, propagate_normals=False, normal_neighbors=10,
+             max_distance=1.0, max_normal_angle=30.0, threads=0, progress=None, nonfinite="raise", as_polydata=False):
     """Is each start point inside the domain of the surface? (vtkPointSetSurfaceDomainClassifier,
     ``pss classify``).
 
@@ -156,6 +164,8 @@ def _project(filter_, p, extra):
     _set(filter_, "Tolerance", _number("tolerance", p["tolerance"]), "tolerance")
     _set(filter_, "MaxTravel", _number("max_travel", p["max_travel"]), "max_travel")
     filter_.SetSeekMaxima(bool(p["seek_maxima"]))
+    filter_.SetPropagateNormals(bool(p["propagate_normals"]))
+    _set(filter_, "NormalNeighbors", _number("normal_neighbors", p["normal_neighbors"], integer=True), "normal_neighbors")
     for prop, (keyword, integer) in extra.items():
         _set(filter_, prop, _number(keyword, p[keyword], integer=integer), keyword)
     filter_.SetInputData(0, cloud.polydata)

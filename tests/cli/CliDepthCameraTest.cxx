@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // `pss generate --scene depth-camera`: an organized 640 x 480 frame, written as PCD with its
 // WIDTH, HEIGHT and VIEWPOINT and as .vtp with the same field data, that pss reads back (its NaN
-// pixels skipped and counted) and orients n toward the sensor from.
+// pixels skipped and counted) and orients n toward the sensor from; the mesh of such a frame with
+// cells that follow its scale; and the other orientation of n, propagated over neighbours.
 #include "CliTestUtilities.h"
 
 #include "vtkDataArray.h"
@@ -172,4 +173,32 @@ TEST(Cli, MeshCellsFollowTheScaleUnlessRegular)
   };
   EXPECT_GT(levels("", "adaptive-cells.vtp"), 1.0);
   EXPECT_EQ(levels("--regular-cells", "regular-cells.vtp"), 1.0);
+}
+
+// pss project --propagate-normals: the oriented normals of a sphere, every one outward; a graph
+// of no neighbours is refused.
+TEST(Cli, ProjectPropagatesNormals)
+{
+  const std::string cloud = TempPath("propagate-sphere.vtp");
+  const std::string out = TempPath("propagate-sphere-normals.vtp");
+  CommandResult r = RunCommand(Pss() + " generate --scene sphere --dimension 3 --count 2000 --size 20 --noise 0.1 -o " + cloud);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  r = RunCommand(Pss() + " project " + cloud + " --procedure plane --propagate-normals --normal-neighbors 12 -o " + out);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  vtkSmartPointer<vtkPolyData> projected = ReadFrame(out);
+  vtkDataArray* normals = projected->GetPointData()->GetArray("Normal");
+  ASSERT_NE(normals, nullptr);
+  ASSERT_EQ(projected->GetNumberOfPoints(), 2000);
+  vtkIdType outward = 0;
+  for (vtkIdType i = 0; i < projected->GetNumberOfPoints(); ++i)
+  {
+    double n[3], x[3];
+    normals->GetTuple(i, n);
+    projected->GetPoint(i, x);
+    outward += n[0] * x[0] + n[1] * x[1] + n[2] * x[2] > 0.0 ? 1 : 0;
+  }
+  EXPECT_EQ(outward, projected->GetNumberOfPoints());
+  r = RunCommand(Pss() + " project " + cloud + " --propagate-normals --normal-neighbors 0 -o " + out);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.output.find("--normal-neighbors must be within [1, 100]"), std::string::npos) << r.output;
 }

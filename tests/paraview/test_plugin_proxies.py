@@ -294,6 +294,16 @@ pss("project", path("sphere.vtp"), "--h", 3, "--dimension", 3, "-o", path("proj_
 proj = P["PointSetSurfaceProjection"](Input=reader("sphere.vtp"), AutomaticScale=0, ScaleFactor=3, Dimension="3D")
 compare("Projection com, 3D sphere", fetch(proj), read("proj_sphere.vtp"), PROJECTION_ARRAYS + PASSED, [])
 
+pss("project", path("sphere.vtp"), "--h", 3, "--dimension", 3, "--propagate-normals", "--normal-neighbors", 8,
+    "-o", path("proj_sphere_oriented.vtp"))
+proj = P["PointSetSurfaceProjection"](Input=reader("sphere.vtp"), AutomaticScale=0, ScaleFactor=3, Dimension="3D",
+                                      PropagateNormals=1, NormalNeighbors=8)
+got = fetch(proj)
+compare("Projection com, 3D sphere, propagated normals", got, read("proj_sphere_oriented.vtp"), PROJECTION_ARRAYS + PASSED, [])
+outward = np.einsum("ij,ij->i", array(got, "Normal"), vtk_to_numpy(got.GetPoints().GetData()))
+check(np.all(outward > 0), "Projection with PropagateNormals: %d of %d normals point into the sphere" % (
+    np.count_nonzero(outward <= 0), outward.size))
+
 pss("project", path("cloud.vtp"), "--variant", "delta", "--h", 4, "--start", path("starts.vtp"), "-o", path("proj_delta.vtp"))
 proj = P["PointSetSurfaceProjection"](Input=cloud, StartPoints=starts, Variant="Delta Energy", AutomaticScale=0, ScaleFactor=4)
 compare("Projection delta", fetch(proj), read("proj_delta.vtp"), PROJECTION_ARRAYS + PASSED, [])
