@@ -454,8 +454,9 @@ void SurfaceMesher::contour()
     for (int bits = 0; bits < cornersPerCell; ++bits)
     {
       std::uint32_t v = CellCorner.empty() ? CellCorners[cell][bits] : CellCorner[cell];
-      // Every corner of a band cell is a grid vertex, so these steps never fall off the band.
-      for (int a = 0; a < Dimension && v != NoIndex && !CellCorner.empty(); ++a)
+      // Regular grid: every corner of a band cell is a grid vertex, so these steps never fall off
+      // the band (adaptive cells have their corners listed).
+      for (int a = 0; a < Dimension && v != NoIndex && CellCorners.empty(); ++a)
       {
         v = (bits >> a) & 1 ? Step[2 * a][v] : v;
       }

@@ -8,8 +8,8 @@
  * 1. band: the cells of a regular grid (spacing cellSize * h) that hold a cloud point, grown by
  *    band * h in every direction. Only these cells are ever visited, so time and memory follow
  *    the surface's area, never the bounding box's volume. With a scale per point (and
- *    adaptiveCells) the cells follow the local scale instead: a point whose h_i is about 2^L times
- *    the finest level's asks for cells of level L (side 2^L finest cells), its band is grown by
+ *    adaptiveCells) the cells follow the local scale instead: a point whose h_i is at least 2^L
+ *    times h asks for cells of level L (side 2^L cellSize * h; never finer), its band is grown by
  *    band * h_i, and where levels meet the coarser cells are split until every cell's neighbours
  *    are at most one level apart (a balanced octree, a quadtree in 2D). A corner of a finer cell in
  *    the middle of a coarser cell's edge or face (a hanging corner) is not evaluated: its n and g
@@ -302,7 +302,6 @@ private:
   void interpolateHanging();
   /// The index of the corner with key @p k, or NoIndex.
   std::uint32_t cornerOf(Key k) const;
-  void contourAdaptive();
   void contourSimplex(const std::array<std::uint32_t, 4>& corners, const std::array<int, 4>& bits, int count);
   std::uint32_t crossingOn(std::uint32_t lower, std::uint32_t upper, int direction);
   /// The crossing on the cell edge between corners @p a and @p b (adaptive cells), on the half of
@@ -335,7 +334,6 @@ private:
   int Dimension = 3;
   double Cell = 0.0;
   long long Reach = 0; ///< the band's width in cells
-  int Levels = 1;      ///< cell levels: the side of a level-L cell is 2^L Cell
   Vec3 Origin = Vec3::Zero();
   std::array<long long, 3> Size{ { 1, 1, 1 } };
   std::vector<Key> Cells;          ///< band cells, by the key of their lowest corner, sorted

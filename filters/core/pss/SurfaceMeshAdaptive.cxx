@@ -111,14 +111,14 @@ bool SurfaceMesher::buildAdaptiveBand(const PointIndex& index)
   {
     return false;
   }
-  Levels = highest + 1;
+  const int levels = highest + 1; // the side of a level-L cell is 2^L Cell
   // Room on every side for the coarsest level's band and the balance's growth.
-  const long long margin = (Reach + 2) << (Levels - 1);
+  const long long margin = (Reach + 2) << (levels - 1);
   sizeGrid(margin);
 
-  std::vector<Coords> size(static_cast<std::size_t>(Levels));
-  std::vector<std::vector<Key>> occupied(static_cast<std::size_t>(Levels));
-  for (int l = 0; l < Levels; ++l)
+  std::vector<Coords> size(static_cast<std::size_t>(levels));
+  std::vector<std::vector<Key>> occupied(static_cast<std::size_t>(levels));
+  for (int l = 0; l < levels; ++l)
   {
     size[l] = sizeAtLevel(Size, l, Dimension);
   }
@@ -138,7 +138,7 @@ bool SurfaceMesher::buildAdaptiveBand(const PointIndex& index)
   // cell before going up a level), which keeps neighbouring leaves at most one level apart.
   std::vector<std::pair<Key, std::uint8_t>> leaves;
   std::vector<Key> below;
-  for (int l = 0; l < Levels; ++l)
+  for (int l = 0; l < levels; ++l)
   {
     auto& own = occupied[l];
     std::sort(own.begin(), own.end());
@@ -154,7 +154,7 @@ bool SurfaceMesher::buildAdaptiveBand(const PointIndex& index)
       std::set_union(needed.begin(), needed.end(), near.begin(), near.end(), std::back_inserter(merged));
       needed = std::move(merged);
     }
-    if (l + 1 < Levels)
+    if (l + 1 < levels)
     {
       needed = childrenOf(parentsOf(needed, size[l], size[l + 1], Dimension), size[l + 1], size[l], Dimension);
     }
@@ -213,7 +213,7 @@ bool SurfaceMesher::buildAdaptiveBand(const PointIndex& index)
   linkCorners();
   Statistics.bandCells = Cells.size();
   Statistics.gridVertices = Keys.size() - HangingCorners.size();
-  Statistics.cellLevels = static_cast<std::size_t>(Levels);
+  Statistics.cellLevels = static_cast<std::size_t>(levels);
   Statistics.hangingVertices = HangingCorners.size();
   return true;
 }
