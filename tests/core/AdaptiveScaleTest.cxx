@@ -155,7 +155,7 @@ TEST(ScaledDerivatives, MatchCentralDifferences)
   const auto close = [](double analytic, double numeric, double scale, const std::string& what) {
     EXPECT_NEAR(analytic, numeric, 1e-6 * std::max(std::abs(analytic), scale)) << what;
   };
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     auto s = makeSurface(v, index, params(h, 6.0));
     for (const Vec3& x : xs)
@@ -213,7 +213,7 @@ TEST(AdaptiveScale, ConstantScalesGiveTheSingleScaleProjections)
   {
     starts.push_back(pts[static_cast<std::size_t>(i) * 37] + 0.5 * h * randomUnit(rng, 3));
   }
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     auto a = makeSurface(v, global, params(h));
     auto b = makeSurface(v, scaled, params(h));
@@ -264,7 +264,7 @@ TEST(AdaptiveScale, PlaneWithTenfoldSpacingProjectsOntoThePlane)
     const double hx = index.scale(index.nearest(onPlane).first);
     starts.push_back(onPlane + Vec3(0.0, 0.0, (i % 2 ? 0.4 : -0.4) * hx));
   }
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     auto s = makeSurface(v, index, params(typical));
     Workspace ws;
@@ -306,7 +306,7 @@ TEST(AdaptiveScale, SphereOfTenfoldDensityProjectsOntoTheSphere)
   index.setScales(estimateLocalScales(index));
   const double hMax = index.maxScale();
   EXPECT_GT(hMax / index.minScale(), 2.0);
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     auto s = makeSurface(v, index, params(estimateScale(index)));
     Workspace ws;

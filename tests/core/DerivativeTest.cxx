@@ -65,7 +65,7 @@ void checkLineSlopes(int dim)
   const Cloud c = makeCloud(dim);
   PointIndex index(c.pts, dim);
   const double eps = 1e-4 * c.h;
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     auto s = makeSurface(v, index, params(c.h, 6.0));
     std::mt19937 rng(77);
@@ -91,7 +91,7 @@ void checkImplicitG(int dim)
   PointIndex index(c.pts, dim);
   const double eps = 1e-4 * c.h;
   const Orientation orient = Orientation::awayFromCentroid(index);
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     auto s = makeSurface(v, index, params(c.h, 6.0));
     const int n = (dim == 3 && (v == Variant::Integral || v == Variant::Delta)) ? 6 : 20;
@@ -174,7 +174,7 @@ void checkSecondDerivatives(int dim)
     const Vec3 gm = field.jet(x - eps * a, a, ws).gradient;
     expectClose(jet.curvature, a.dot(gp - gm) / (2 * eps), std::max(2.0, delta / (c.h * c.h)), "a^T H a of delta");
   }
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     auto s = makeSurface(v, index, params(c.h, 6.0));
     const int n = (dim == 3 && v == Variant::Integral) ? 6 : 15;

@@ -164,7 +164,7 @@ TEST(ProjectionCircle, PlaneProcedureAllVariants)
 {
   const Sphereish g = makeCircle();
   const std::vector<Vec3> starts = makeStarts(g, 24, 102u);
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     checkPlaneFitBias(projectAndCheck(g, v, Procedure::Plane, starts, 0.03), g);
   }
@@ -198,7 +198,7 @@ TEST(ProjectionSphere, PlaneProcedureAllVariants)
   const Sphereish g = makeSphere();
   const std::vector<Vec3> starts = makeStarts(g, 12, 202u);
   const std::vector<Vec3> few(starts.begin(), starts.begin() + 4);
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     const bool costly = v == Variant::Integral || v == Variant::Delta;
     checkPlaneFitBias(projectAndCheck(g, v, Procedure::Plane, costly ? few : starts, 0.05), g);

@@ -73,7 +73,7 @@ struct Case
 std::vector<Case> cases()
 {
   std::vector<Case> out;
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     for (Procedure p : { Procedure::Extremal, Procedure::Plane })
     {
@@ -125,7 +125,7 @@ TEST(Workspace, ProjectionIndependentOfEarlierCalls)
     std::function<void(Workspace&)> run;
   };
   std::vector<Disturbance> disturbances;
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     const std::string name = variantName(v);
     disturbances.push_back({ name + " on another cloud", [&, v](Workspace& ws) {
@@ -182,7 +182,7 @@ TEST(Workspace, PlaneFitCentroidIsThatOfTheFitPoint)
   const double h = 0.5;
   const PointIndex index(noisySphere(6u), 3);
   const Vec3 x(0.2, 1.3, 0.7);
-  for (Variant v : allVariants())
+  for (Variant v : paperVariants())
   {
     SCOPED_TRACE(variantName(v));
     const auto s = makeSurface(v, index, params(h));

@@ -215,6 +215,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     representable = representable && Representable(params.h);
   }
 
+  // APSS and RIMLS need normals: the plane's normal, flipped at every third point, so that some
+  // neighbourhoods' normals agree and some cancel. In 2D a normal along z has no xy part and is
+  // refused; that refusal is checked too.
+  if (pss::needsNormals(variant))
+  {
+    const Vec3 up = planeU.cross(planeV.allFinite() ? planeV : lineDirection);
+    std::vector<Vec3> normals(cloud.size());
+    for (std::size_t i = 0; i < normals.size(); ++i)
+    {
+      normals[i] = i % 3 == 0 ? Vec3(-up) : up;
+    }
+    try
+    {
+      index.setNormals(normals);
+    }
+    catch (const std::invalid_argument&)
+    {
+      PSS_FUZZ_CHECK(!index.empty() && !(index.restrict(up).norm() > 0.0));
+      return 0;
+    }
+  }
+
   bool paramsValid = true;
   try
   {

@@ -110,10 +110,12 @@ void CandidateCache::fetch(const PointIndex& index, const SurfaceParameters& par
     reserve(n);
     for (Eigen::Index k = 0; k < n; ++k)
     {
-      const Vec3& p = index.point(static_cast<std::uint32_t>(ranks[static_cast<std::size_t>(k)]));
+      const auto i = static_cast<std::uint32_t>(ranks[static_cast<std::size_t>(k)]);
+      const Vec3& p = index.point(i);
       px[k] = p.x();
       py[k] = p.y();
       pz[k] = p.z();
+      ids[static_cast<std::size_t>(k)] = i;
     }
   }
   else
@@ -123,12 +125,14 @@ void CandidateCache::fetch(const PointIndex& index, const SurfaceParameters& par
       double* x = px.data();
       double* yy = py.data();
       double* z = pz.data();
+      std::uint32_t* id = ids.data();
       for (std::uint32_t i = begin; i < end; ++i)
       {
         const Vec3& p = index.point(i);
         x[n] = p.x();
         yy[n] = p.y();
         z[n] = p.z();
+        id[n] = i;
         n += (p - y).squaredNorm() < sqRadius ? 1 : 0;
       }
     });
@@ -147,6 +151,7 @@ void CandidateCache::fetch(const PointIndex& index, const SurfaceParameters& par
     px[0] = p.x();
     py[0] = p.y();
     pz[0] = p.z();
+    ids[0] = static_cast<std::uint32_t>(nearest.first);
     count = 1;
   }
 }
@@ -205,6 +210,7 @@ void CandidateCache::fetchScaled(
         pz[n] = p.z();
         pk[n] = index.inverseSqScale(i);
         ph[n] = index.scale(i);
+        ids[static_cast<std::size_t>(n)] = i;
         n += inside ? 1 : 0;
       }
     }
@@ -224,6 +230,7 @@ void CandidateCache::fetchScaled(
       pz[k] = p.z();
       pk[k] = index.inverseSqScale(i);
       ph[k] = index.scale(i);
+      ids[static_cast<std::size_t>(k)] = i;
     }
   }
   count = n;
@@ -238,6 +245,7 @@ void CandidateCache::fetchScaled(
     pz[0] = p.z();
     pk[0] = index.inverseSqScale(nearest);
     ph[0] = index.scale(nearest);
+    ids[0] = static_cast<std::uint32_t>(nearest);
     count = 1;
   }
 }
@@ -270,12 +278,15 @@ void CandidateCache::focus(const CandidateCache& wider, const Vec3& c, double re
   double* x = px.data();
   double* y = py.data();
   double* z = pz.data();
+  std::uint32_t* id = ids.data();
+  const std::uint32_t* wid = wider.ids.data();
   Eigen::Index n = 0;
   for (Eigen::Index i = 0; i < m; ++i)
   {
     x[n] = wx[i];
     y[n] = wy[i];
     z[n] = wz[i];
+    id[n] = wid[i];
     n += ds[i] < sqRadius ? 1 : 0;
   }
   count = n;
@@ -304,6 +315,7 @@ void CandidateCache::focusScaled(const CandidateCache& wider, const Vec3& c, dou
     pz[n] = wider.pz[i];
     pk[n] = wider.pk[i];
     ph[n] = wider.ph[i];
+    ids[static_cast<std::size_t>(n)] = wider.ids[static_cast<std::size_t>(i)];
     n += d2[i] < r * r ? 1 : 0;
   }
   count = n;
@@ -318,6 +330,7 @@ void CandidateCache::reserve(Eigen::Index n)
     px.conservativeResize(capacity);
     py.conservativeResize(capacity);
     pz.conservativeResize(capacity);
+    ids.resize(static_cast<std::size_t>(capacity));
     if (scaled)
     {
       pk.conservativeResize(capacity);

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file DirectionRulesAndEnergies.h
- * @brief The direction rules and energies the paper's five definitions are composed of
- *        (VariantCatalog.h says which definition takes which). Each is a small value over the
+ * @brief The direction rules and energies the paper's five definitions, APSS and RIMLS are
+ *        composed of (VariantCatalog.h says which definition takes which). Each is a small value over the
  *        cloud's index and the parameters; its state lives in the caller's Workspace.
  */
 #pragma once
@@ -209,6 +209,76 @@ public:
 
 private:
   DistanceField Field;
+};
+
+/// The two fits of points with oriented normals.
+enum class NormalFitKind
+{
+  /// APSS (Guennebaud and Gross 2007): the algebraic sphere u0 + ul . r + uq |r|^2 fitted to the
+  /// weighted points and normals around x, Pratt-normalized (|ul|^2 - 4 u0 uq = 1), so that its
+  /// value at x is about the signed distance; planes are the case uq = 0.
+  AlgebraicSphere,
+  /// RIMLS (Oztireli, Guennebaud and Gross 2009): f(x) = sum w_i (x - p_i) . n_i / sum w_i with
+  /// the weights refitted robustly (residuals over sigma_r h, normals over sigma_n).
+  RobustImplicit
+};
+
+/**
+ * What a fit of points with normals gives at its point x: f(x), about the signed distance to the
+ * surface (positive on the side the normals point to), its gradient, the move along n onto the
+ * fitted surface, and a stability: the length of the weighted mean of the neighbours' normals,
+ * in [0, 1] (1 where they agree, 0 where they cancel, as on both sides of a thin sheet).
+ */
+struct NormalFit
+{
+  double value = 0.0;
+  Vec3 gradient = Vec3::Zero();
+  Vec3 step = Vec3::Zero();
+  double stability = 0.0;
+  /// False where the fit has no surface: no weight, normals that cancel (stability below the
+  /// threshold), an imaginary sphere (|ul|^2 - 4 u0 uq <= 0) or a zero gradient.
+  bool defined = false;
+};
+
+/// The fit of @p kind at @p x (its neighbourhood gathered in ws.query with normals).
+NormalFit fitWithNormals(
+  NormalFitKind kind, const PointIndex& index, const SurfaceParameters& params, const Vec3& x, Workspace& ws);
+
+/**
+ * @brief n(x) of a fit with normals: its gradient's direction, with the fit's own step onto its
+ *        surface for the plane procedure (DirectionFit::step), which is then Guennebaud and
+ *        Gross's iterated sphere projection (APSS) or Oztireli et al.'s x - f grad f (RIMLS).
+ */
+class NormalFitDirection : public DirectionRule
+{
+public:
+  /// Throws std::invalid_argument when @p index has no normals.
+  NormalFitDirection(const PointIndex& index, const SurfaceParameters& params, NormalFitKind kind);
+  DirectionFit fit(const Vec3& x, DirectionMemory& memory, Workspace& ws) const override;
+
+private:
+  const PointIndex& Index;
+  const SurfaceParameters Params;
+  const NormalFitKind Kind;
+};
+
+/**
+ * @brief e(y, a) = f(y)^2 for the f of a fit with normals, independent of a: its minima along any
+ *        line that crosses the surface are the zeros of f, so the extremal surface is the fit's
+ *        zero set. The slope is 2 f grad f . a with the fit's gradient (APSS: the sphere's, the
+ *        sphere held fixed; RIMLS: with the weights' derivatives, the robust factors held fixed);
+ *        it changes sign exactly where f does, so the line search finds f = 0 exactly.
+ */
+class NormalFitEnergy : public Energy
+{
+public:
+  NormalFitEnergy(const PointIndex& index, const SurfaceParameters& params, NormalFitKind kind);
+  LineSample lineSample(const Vec3& y, const Vec3& a, Workspace& ws) const override;
+
+private:
+  const PointIndex& Index;
+  const SurfaceParameters Params;
+  const NormalFitKind Kind;
 };
 
 } // namespace pss

@@ -57,10 +57,24 @@ double unorientedAngleDegrees(const Vec3& a, const Vec3& b)
 
 Direction cloudNormalAt(const SurfaceDefinition& s, std::size_t point, Workspace& ws)
 {
-  // The weighted total-least-squares plane of the point's neighbours.
+  if (s.index().hasNormals())
+  {
+    // A cloud with normals (APSS, RIMLS) brings its own.
+    Direction given;
+    given.n = s.index().normal(point);
+    given.stability = 1.0;
+    given.defined = true;
+    return given;
+  }
+  return centreOfMassNormal(s.index(), s.parameters(), s.index().point(point), ws);
+}
+
+Direction centreOfMassNormal(const PointIndex& index, const SurfaceParameters& params, const Vec3& x, Workspace& ws)
+{
+  // The weighted total-least-squares plane of the neighbours.
   Neighbourhood& nb = ws.local;
-  gatherNeighbourhood(s.index(), s.parameters(), s.index().point(point), nb, ws);
-  return smallestEigenDirection(covarianceAboutCentroid(nb), s.dimension(), s.parameters().minStability);
+  gatherNeighbourhood(index, params, x, nb, ws);
+  return smallestEigenDirection(covarianceAboutCentroid(nb), index.dimension(), params.minStability);
 }
 
 CloudNormals::CloudNormals(const SurfaceDefinition& s)

@@ -13,7 +13,8 @@
  *
  * The cloud's local normal at the fixed point f is the centre-of-mass normal (total least squares
  * plane of the Gaussian-weighted neighbours) evaluated at the cloud point nearest to f: it depends
- * on the cloud alone, whatever definition is being classified.
+ * on the cloud alone, whatever definition is being classified. A cloud with normals
+ * (PointIndex::hasNormals: APSS, RIMLS) brings its own, and they are taken instead.
  */
 #pragma once
 
@@ -84,6 +85,10 @@ private:
   /// computed from a neighbourhood beyond the complete region.
   mutable std::unique_ptr<std::atomic<std::uint8_t>[]> State;
 };
+
+/// The centre-of-mass normal at @p x from the cloud's points alone (in ws.local), whatever
+/// normals the index carries: how the cloud's own normals are estimated.
+Direction centreOfMassNormal(const PointIndex& index, const SurfaceParameters& params, const Vec3& x, Workspace& ws);
 
 /// The cloud's own normal at cloud point @p point, uncached.
 Direction cloudNormalAt(const SurfaceDefinition& s, std::size_t point, Workspace& ws);

@@ -53,6 +53,14 @@ struct SurfaceParameters
   /// Spacing, in units of h, of the lattice from which e_I's quadrature reads delta (DeltaLattice.h);
   /// 0 evaluates delta exactly at every node (the reference). Otherwise within [0.05, 1].
   double deltaLattice = 0.0;
+  /// APSS: how much of the fitted sphere's curvature is kept, in [0, 1] (1: the algebraic sphere
+  /// of Guennebaud and Gross; 0: its plane through the same points and normals).
+  double sphericity = 1.0;
+  /// RIMLS: the normal and residual scales of the robust weights (sigma_n, unitless; sigma_r in
+  /// units of the local h), and how many times the weights are refitted after the first fit.
+  double sigmaNormal = 0.75;
+  double sigmaResidual = 0.5;
+  int robustRefits = 3;
 
   /// Throws std::invalid_argument with a readable message when a value is out of range.
   void validate() const;
@@ -88,6 +96,10 @@ struct Neighbourhood
   /// domain's distances, e_I's window.
   double localScale = 0.0;
   Eigen::ArrayXd pointScale;      ///< scaled: h_i per neighbour
+  /// The neighbours' unit normals, when gathered by gatherOrientedNeighbourhood (withNormals);
+  /// robust is scratch for the fits that reweigh the neighbours (RIMLS).
+  bool withNormals = false;
+  Eigen::ArrayXd nx, ny, nz, robust;
   /// What the contents were gathered for (index serial, h, cutoff; 0 = nothing yet), so that a
   /// second gather of the same query is free.
   std::uint64_t indexSerial = 0;
@@ -126,6 +138,14 @@ void noteReach(const PointIndex& index, const Vec3& y, double sqRadius, Workspac
  * projection and samples along a line thus rarely touch the tree. @p nb may be one of @p ws's.
  */
 void gatherNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y,
+  Neighbourhood& nb, Workspace& ws);
+
+/**
+ * gatherNeighbourhood, with each neighbour's normal as well (the first size() entries of
+ * Neighbourhood::nx, ny, nz). Requires PointIndex::hasNormals(). Defined in
+ * OrientedNeighbourhood.cxx.
+ */
+void gatherOrientedNeighbourhood(const PointIndex& index, const SurfaceParameters& params, const Vec3& y,
   Neighbourhood& nb, Workspace& ws);
 
 /**

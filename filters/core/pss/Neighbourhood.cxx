@@ -45,6 +45,19 @@ void SurfaceParameters::validate() const
     throw std::invalid_argument(
       "the delta lattice spacing must be 0 (exact) or in [0.05, 1] h, got " + std::to_string(deltaLattice));
   }
+  if (!(sphericity >= 0.0 && sphericity <= 1.0))
+  {
+    throw std::invalid_argument("the APSS sphericity must be in [0, 1], got " + std::to_string(sphericity));
+  }
+  if (!(sigmaNormal > 0.0) || !std::isfinite(sigmaNormal) || !(sigmaResidual > 0.0) || !std::isfinite(sigmaResidual))
+  {
+    throw std::invalid_argument("the RIMLS sigma_n and sigma_r must be positive finite numbers, got " +
+      std::to_string(sigmaNormal) + " and " + std::to_string(sigmaResidual));
+  }
+  if (robustRefits < 0 || robustRefits > 100)
+  {
+    throw std::invalid_argument("the RIMLS refits must be in [0, 100], got " + std::to_string(robustRefits));
+  }
 }
 
 void Neighbourhood::resize(Eigen::Index n)
@@ -162,6 +175,7 @@ void gatherNeighbourhood(
     return;
   }
   nb.indexSerial = 0; // until the new contents are complete
+  nb.withNormals = false;
   nb.origin = origin;
   nb.invH2 = 1.0 / (params.h * params.h);
   nb.scaled = index.hasScales();

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pss/NormalOrientation.h"
 
+#include "pss/Domain.h"
 #include "pss/Parallel.h"
+#include "pss/Workspace.h"
 
 #include <algorithm>
 #include <numeric>
@@ -163,6 +165,61 @@ std::size_t orientNormals(const PointIndex& index, std::vector<Vec3>& normals, c
   const NeighbourGraph graph = nearestNeighbourGraph(index, k, threads);
   return propagateOrientation(graph, normals.empty() ? nullptr : normals.front().data(), seeds,
     [&](std::uint32_t seed) { return normals[seed][up] < 0.0; });
+}
+
+std::vector<Vec3> estimateOrientedNormals(const PointIndex& index, const SurfaceParameters& params,
+  const std::optional<Vec3>& viewpoint, std::size_t k, int threads, std::size_t* borrowed)
+{
+  const std::size_t n = index.size();
+  params.validate();
+  std::vector<Vec3> normals(n, Vec3::Zero());
+  parallelFor(n, threads, [&](std::size_t begin, std::size_t end, Workspace& ws) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const Direction d = centreOfMassNormal(index, params, index.point(i), ws);
+      normals[i] = d.defined ? d.n : Vec3::Zero();
+    }
+  });
+  // Orientation skips the zero normals; they borrow from their nearest oriented neighbour after.
+  std::vector<Vec3> known;
+  std::vector<std::size_t> knownId;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (normals[i].squaredNorm() > 0.0)
+    {
+      known.push_back(index.point(i));
+      knownId.push_back(i);
+    }
+  }
+  if (known.empty())
+  {
+    throw std::invalid_argument("no cloud point has a normal: every neighbourhood is a single point or a line "
+                                "(isolated points?); give a Normals array or a larger scale");
+  }
+  orientNormals(index, normals, viewpoint, k, threads);
+  std::size_t lent = 0;
+  if (known.size() < n)
+  {
+    const PointIndex withNormal(known, index.dimension());
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (normals[i].squaredNorm() == 0.0)
+      {
+        normals[i] = normals[knownId[withNormal.originalId(withNormal.nearest(index.point(i)).first)]];
+        ++lent;
+      }
+    }
+  }
+  if (borrowed)
+  {
+    *borrowed = lent;
+  }
+  std::vector<Vec3> inInputOrder(index.size() + index.skippedCount(), Vec3::Zero());
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    inInputOrder[index.originalId(i)] = normals[i];
+  }
+  return inInputOrder;
 }
 
 } // namespace pss

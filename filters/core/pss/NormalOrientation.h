@@ -13,6 +13,7 @@
  */
 #pragma once
 
+#include "pss/Kernel.h"
 #include "pss/PointIndex.h"
 #include "pss/Types.h"
 
@@ -56,5 +57,18 @@ std::size_t propagateOrientation(const NeighbourGraph& graph, double* normals, c
  */
 std::size_t orientNormals(const PointIndex& index, std::vector<Vec3>& normals, const std::optional<Vec3>& viewpoint,
   std::size_t k = 10, int threads = 1);
+
+/**
+ * Oriented normals estimated from the cloud alone, for the definitions that need them (APSS,
+ * RIMLS) when the cloud brings none: at each indexed point the cloud's own normal (the
+ * centre-of-mass plane of its neighbours at scale @p params, Domain.h's centreOfMassNormal), oriented
+ * by orientNormals(@p viewpoint, @p k). A point where no normal is defined (isolated, or on a line
+ * in 3D) takes the oriented normal of the nearest point that has one; @p borrowed, when given,
+ * receives how many did. Returned in the index's input order (zero for skipped points), ready for
+ * PointIndex::setNormals. Throws std::invalid_argument when no point has a normal. The same for
+ * every thread count.
+ */
+std::vector<Vec3> estimateOrientedNormals(const PointIndex& index, const SurfaceParameters& params,
+  const std::optional<Vec3>& viewpoint, std::size_t k = 10, int threads = 1, std::size_t* borrowed = nullptr);
 
 } // namespace pss

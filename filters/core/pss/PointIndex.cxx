@@ -721,9 +721,11 @@ void PointIndex::leavesInBall(const Vec3& x, double sqRadius, LeafRanges& ranges
   });
 }
 
+void PointIndex::renewSerial() { Serial = nextSerial(); }
+
 void PointIndex::setScales(const std::vector<double>& scales)
 {
-  Serial = nextSerial();
+  renewSerial();
   Scales.clear();
   InverseSqScales.clear();
   NodeScales.clear();

@@ -100,6 +100,18 @@ public:
   double minScale() const { return MinScale; }
   double maxScale() const { return MaxScale; }
 
+  /**
+   * Oriented normals, one per input point (the constructor's input order; entries of skipped
+   * points are not read), for the definitions that fit points with normals (APSS, RIMLS). Stored
+   * as unit vectors (in 2D their z is dropped first). Throws std::invalid_argument when the size
+   * is not the input's or when the normal of an indexed point is zero, NaN or infinite (naming
+   * the first such point). An empty vector removes them. Defined in OrientedNeighbourhood.cxx.
+   */
+  void setNormals(const std::vector<Vec3>& normals);
+  bool hasNormals() const { return !Normals.empty(); }
+  /// The unit normal of indexed point @p i (with hasNormals()).
+  const Vec3& normal(std::size_t i) const { return Normals[i]; }
+
   /// Drops z in 2D; leaves 3D points untouched.
   Vec3 restrict(const Vec3& x) const { return restrictTo(Dimension, x); }
   /// The same for a cloud of @p dimension, without an index (e.g. before a distributed run has one).
@@ -153,6 +165,8 @@ public:
 
 private:
   struct Tree;
+  /// A new serial(): every neighbourhood cached for this index is stale.
+  void renewSerial();
   /// The leaves for forEachLeafInBall, into @p ranges.
   void leavesInBall(const Vec3& x, double sqRadius, LeafRanges& ranges) const;
   void leavesInScaledBall(const Vec3& x, double margin, double sigma, LeafRanges& ranges) const;
@@ -177,6 +191,7 @@ private:
   std::vector<double> Scales;          // leaf order
   std::vector<double> InverseSqScales; // leaf order
   std::vector<NodeScale> NodeScales;
+  std::vector<Vec3> Normals; // leaf order
   double MinScale = 0.0;
   double MaxScale = 0.0;
   Vec3 CompleteLo = Vec3::Constant(-std::numeric_limits<double>::infinity());

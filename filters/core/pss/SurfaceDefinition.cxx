@@ -64,6 +64,11 @@ double SurfaceDefinition::energy(const Vec3& y, const Vec3& a, Workspace& ws) co
 Direction SurfaceDefinition::planeFit(const Vec3& x, Vec3& offset, DirectionMemory& memory, Workspace& ws) const
 {
   const DirectionFit fit = Directions->fit(x, memory, ws);
+  if (fit.hasStep)
+  {
+    offset = fit.step;
+    return fit.direction;
+  }
   const Neighbourhood* nb = fit.neighbourhood;
   if (!nb)
   {

@@ -9,8 +9,8 @@
  * centre of mass, or the argmin of e_I over directions) and four energies (Eq. 1, its normalized form, e_I, delta).
  * Everything else (the implicit function g of Eq. 2, projection to minima or maxima, domain
  * classification, field sampling) is written once against SurfaceDefinition in
- * ExtremalSurface.h. Adding a definition (APSS, RIMLS, ...) means a new rule or energy where the
- * existing ones do not serve, one Variant value and one row of variantTable().
+ * ExtremalSurface.h. Adding a definition means a new rule or energy where the existing ones do
+ * not serve, one Variant value and one row of variantTable() (as APSS and RIMLS were added).
  *
  * Every evaluation takes the caller's Workspace (Workspace.h); none keeps state of its own.
  */
@@ -54,6 +54,11 @@ struct DirectionFit
   /// x's neighbourhood, in the workspace given to the fit (valid until that workspace's next
   /// use), or nullptr when the rule gathered none it could hand on (n_I).
   const Neighbourhood* neighbourhood = nullptr;
+  /// Rules that fit a surface of their own at x (APSS's sphere, RIMLS's implicit function) set
+  /// this to the move from x onto it along n, which the plane procedure then takes instead of
+  /// the move onto the plane through the centre of mass.
+  bool hasStep = false;
+  Vec3 step = Vec3::Zero();
 };
 
 /// n(x): how a definition picks the direction of the line along which it minimizes its energy.
@@ -112,7 +117,8 @@ public:
    * n(x) and c(x) - x, the offset of the normalized-weight centre of mass: what one step of the
    * plane procedure needs. Rules that fit x's neighbourhood hand it on, so both come from one
    * gather; for the others x's neighbourhood is gathered once more. @p memory as in
-   * directionNear.
+   * directionNear. For APSS and RIMLS the offset is the move along n onto their own local fit
+   * (DirectionFit::step): the plane procedure is then their usual projection.
    */
   Direction planeFit(const Vec3& x, Vec3& centroidOffset, DirectionMemory& memory, Workspace& ws) const;
 

@@ -20,20 +20,29 @@ namespace pss
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
-/// The five surface definitions of the paper (Sections 2, 4 and 5).
+/// The five surface definitions of the paper (Sections 2, 4 and 5), and the two that fit points
+/// with oriented normals (docs/paper.md, "Definitions with normals").
 enum class Variant : int
 {
   LevinMLS = 0,      ///< Eq. 1 with Gaussian weights; n = argmin_a e_MLS.
   NormalizedMLS = 1, ///< Eq. 1 with normalized Gaussian weights (Alexa et al.).
   CenterOfMass = 2,  ///< n_COM: normal of the weighted total-least-squares plane (Sec. 5).
   Integral = 3,      ///< e_I: integral of delta^2 over the plane P(x, a) (Sec. 5).
-  Delta = 4          ///< n = n_I and e(y, a) = delta(y) (end of Sec. 5).
+  Delta = 4,         ///< n = n_I and e(y, a) = delta(y) (end of Sec. 5).
+  APSS = 5,          ///< algebraic point-set surfaces: spheres fitted to points and normals.
+  RIMLS = 6          ///< robust implicit MLS: points and normals, robustly reweighted.
 };
 
-constexpr int VariantCount = 5;
+constexpr int VariantCount = 7;
 
-/// Canonical lower-case name: "levin", "normalized", "com", "integral", "delta" (from
-/// variantTable(), VariantCatalog.h).
+/// True for the definitions that need an oriented normal at every cloud point (APSS, RIMLS).
+constexpr bool needsNormals(Variant v)
+{
+  return v == Variant::APSS || v == Variant::RIMLS;
+}
+
+/// Canonical lower-case name: "levin", "normalized", "com", "integral", "delta", "apss", "rimls"
+/// (from variantTable(), VariantCatalog.h).
 const char* variantName(Variant v);
 /// Parses the table's canonical names and enum spellings ("LevinMLS", ...), ignoring case, '-',
 /// '_' and ' ', and "mls" for Levin's; returns false if unknown.

@@ -25,6 +25,18 @@ std::unique_ptr<Energy> mlsEnergy(const PointIndex& index, const SurfaceParamete
   return std::make_unique<MLSEnergy>(index, params, weights);
 }
 
+template <NormalFitKind kind>
+std::unique_ptr<DirectionRule> normalFitDirection(const PointIndex& index, const SurfaceParameters& params)
+{
+  return std::make_unique<NormalFitDirection>(index, params, kind);
+}
+
+template <NormalFitKind kind>
+std::unique_ptr<Energy> normalFitEnergy(const PointIndex& index, const SurfaceParameters& params)
+{
+  return std::make_unique<NormalFitEnergy>(index, params, kind);
+}
+
 template <class Part, class Base>
 std::unique_ptr<Base> make(const PointIndex& index, const SurfaceParameters& params)
 {
@@ -39,6 +51,10 @@ constexpr auto mls = mlsEnergy<MLSEnergy::Weights::Plain>;
 constexpr auto normalizedMls = mlsEnergy<MLSEnergy::Weights::Normalized>;
 constexpr auto integral = make<IntegralEnergy, Energy>;
 constexpr auto delta = make<DeltaEnergy, Energy>;
+constexpr auto sphereGradient = normalFitDirection<NormalFitKind::AlgebraicSphere>;
+constexpr auto sphereValue = normalFitEnergy<NormalFitKind::AlgebraicSphere>;
+constexpr auto robustGradient = normalFitDirection<NormalFitKind::RobustImplicit>;
+constexpr auto robustValue = normalFitEnergy<NormalFitKind::RobustImplicit>;
 
 } // namespace
 
@@ -46,13 +62,16 @@ const std::array<VariantInfo, VariantCount>& variantTable()
 {
   // n(x) and e(y, a) of each definition: Levin = (eigenvector of C about x, Eq. 1), normalized =
   // (the same, Eq. 1 with theta_N), centre of mass = (eigenvector of the covariance about c(x),
-  // normalized Eq. 1), integral = (argmin of e_I, e_I), delta = (argmin of e_I, delta).
+  // normalized Eq. 1), integral = (argmin of e_I, e_I), delta = (argmin of e_I, delta); APSS and
+  // RIMLS = (their fit's gradient, their fit's value squared).
   static const std::array<VariantInfo, VariantCount> table{ {
     { Variant::LevinMLS, "levin", "LevinMLS", "Levin MLS", aboutQuery, mls },
     { Variant::NormalizedMLS, "normalized", "NormalizedMLS", "Normalized MLS", aboutQuery, normalizedMls },
     { Variant::CenterOfMass, "com", "CenterOfMass", "Center of Mass", aboutCentroid, normalizedMls },
     { Variant::Integral, "integral", "Integral", "Integral Energy", integralArgmin, integral },
     { Variant::Delta, "delta", "Delta", "Delta Energy", integralArgmin, delta },
+    { Variant::APSS, "apss", "APSS", "APSS (Algebraic Spheres)", sphereGradient, sphereValue },
+    { Variant::RIMLS, "rimls", "RIMLS", "RIMLS (Robust Implicit MLS)", robustGradient, robustValue },
   } };
   return table;
 }

@@ -42,6 +42,9 @@ struct CandidateCache
   double centerMinDist = 0.0;
   double radius = 0.0;
   Eigen::ArrayXd px, py, pz;
+  /// Each candidate's index in the PointIndex, for per-point data beside the coordinates (the
+  /// normals of OrientedNeighbourhood.cxx).
+  std::vector<std::uint32_t> ids;
   /// A scale per point (PointIndex::hasScales): each candidate's 1 / h_i^2 and h_i. The fetch
   /// then holds every point that a query within margin of center can need, whatever its scale.
   bool scaled = false;
