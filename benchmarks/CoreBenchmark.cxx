@@ -209,10 +209,16 @@ RowResult ProjectRow(const std::vector<pss::Vec3>& cloud, int dimension, double 
   pss::Procedure procedure, int threads, const StartSet& startSet,
   const std::function<double(const std::vector<pss::Vec3>&)>& accuracy, double deltaLattice = 0.0)
 {
-  const pss::PointIndex index(cloud, dimension);
+  pss::PointIndex index(cloud, dimension);
   pss::SurfaceParameters params;
   params.h = h;
   params.deltaLattice = deltaLattice;
+  if (pss::needsNormals(variant))
+  {
+    // APSS and RIMLS: the cloud's normals estimated and oriented as the filters do without a
+    // Normals array; not timed (the rows time the projection).
+    index.setNormals(pss::estimateOrientedNormals(index, params, std::nullopt, 10, threads));
+  }
   const auto surface = pss::makeSurface(variant, index, params);
   pss::ProjectionOptions options;
   options.procedure = procedure;

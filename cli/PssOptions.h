@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+class vtkPointSetSurface;
+
 namespace pss_cli
 {
 
@@ -54,6 +56,10 @@ int ToInt(const std::string& flag, const std::string& text);
 /// filters clamp (VTK's convention), the command line refuses what they would change
 /// (std::runtime_error naming the flag and the range).
 double ToNumberIn(const std::string& flag, const std::string& text, double lo, double hi, const std::string& unit = "");
+
+/// The surface definition's flags (--variant, --h, the kernel, APSS's and RIMLS's parameters),
+/// setting @p s (PssSurfaceOptions.cxx).
+void AddSurfaceOptions(OptionTable& t, vtkPointSetSurface* s);
 /// "NX,NY,NZ" (or "NX,NY" for NZ = 1).
 void ToDimensions(const std::string& flag, const std::string& text, int dims[3]);
 /// "WxH", each in [1, @p largest]: an image's pixels across and down (width, height).

@@ -60,6 +60,7 @@
 namespace
 {
 
+using pss_cli::AddSurfaceOptions;
 using pss_cli::OptionTable;
 using pss_cli::UsageError;
 
@@ -111,89 +112,6 @@ void AddCommonOptions(OptionTable& t, Run& run)
     [&]() { run.verbose = true; });
   t.Switch("progress", "always draw the progress bar on stderr (default: only on a terminal)", [&]() { run.progress = true; });
   t.Switch("no-progress", "never draw the progress bar", [&]() { run.progress = false; });
-}
-
-void AddSurfaceOptions(OptionTable& t, vtkPointSetSurface* s)
-{
-  // The choices are the core's variant table's names, in its order.
-  std::vector<std::string> variants;
-  std::string variantHelp;
-  for (const pss::VariantInfo& row : pss::variantTable())
-  {
-    variants.emplace_back(row.name);
-    variantHelp += (variantHelp.empty() ? "" : " | ") + variants.back();
-  }
-  variantHelp += std::string(" (default ") + pss::variantName(static_cast<pss::Variant>(s->GetVariant())) + ")";
-  t.Value("variant", "NAME", variantHelp, [s, variants](const std::string& v) {
-    s->SetVariant(static_cast<int>(pss::variantTable()[pss_cli::ToChoice("variant", v, variants)].variant));
-  });
-  t.Value("h", "H", "Gaussian scale h; turns the automatic scale off (default: automatic)", [s](const std::string& v) {
-    s->SetScaleFactor(pss_cli::ToDouble("h", v));
-    s->AutomaticScaleOff();
-  });
-  t.Value("point-scales", "automatic|off|estimated|array",
-    "automatic h: one h (off), a scale per point h_i from each point's neighbours (estimated) or from the "
-    "point array of --scale-array; automatic: per point for a sensor frame (organized or with a viewpoint) "
-    "or where the density varies more than --scale-spread, else one h (default automatic)",
-    [s](const std::string& v) {
-      s->SetPointScales(pss_cli::ToChoice("point-scales", v, { "automatic", "off", "estimated", "array" }));
-    });
-  t.Value("scale-array", "NAME", "--point-scales array: the point array of h_i (default Scale)",
-    [s](const std::string& v) { s->SetScaleArrayName(v.c_str()); });
-  t.Value("scale-spread", "R",
-    "--point-scales automatic: a scale per point when the 90th percentile of the points' scales exceeds R times "
-    "their 10th (default 3)",
-    [s](const std::string& v) {
-      const double r = pss_cli::ToDouble("scale-spread", v);
-      if (!(r >= 1.0) || !std::isfinite(r))
-      {
-        throw pss_cli::UsageError{ "--scale-spread expects a ratio >= 1, got '" + v + "'" };
-      }
-      s->SetScaleSpreadThreshold(r);
-    });
-  t.Value("point-scale-multiplier", "M",
-    "estimated scales per point: h_i = --scale-multiplier x M x the point's smoothed k-NN distance (default 3)",
-    [s](const std::string& v) {
-      const double m = pss_cli::ToDouble("point-scale-multiplier", v);
-      if (!(m >= 1e-2 && m <= 1e2))
-      {
-        throw pss_cli::UsageError{ "--point-scale-multiplier expects a number in [0.01, 100], got '" + v + "'" };
-      }
-      s->SetPointScaleMultiplier(m);
-    });
-  t.Value("scale-neighbors", "K", "automatic h: k of the k-th nearest neighbour distance (default 10)",
-    [s](const std::string& v) { s->SetScaleNeighbors(pss_cli::ToInt("scale-neighbors", v)); });
-  t.Value("scale-multiplier", "M", "automatic h: multiplier of the k-NN distances (default 1)",
-    [s](const std::string& v) {
-      const double m = pss_cli::ToDouble("scale-multiplier", v);
-      if (!(m > 0.0) || !std::isfinite(m))
-      {
-        throw pss_cli::UsageError{ "--scale-multiplier expects a positive number, got '" + v + "'" };
-      }
-      s->SetScaleMultiplier(m);
-    });
-  t.Value("dimension", "D", "auto | 2 | 3 (default auto: 2 when all z are equal)", [s](const std::string& v) {
-    const int d = pss_cli::ToChoice("dimension", v, { "auto", "1", "2", "3" });
-    s->SetDimension(d == 0 ? vtkPointSetSurface::DIMENSION_AUTO : d);
-  });
-  t.Value("cutoff", "C", "kernel truncation in h beyond the nearest point (default 3)",
-    [s](const std::string& v) { s->SetKernelCutoff(pss_cli::ToDouble("cutoff", v)); });
-  t.Value("quadrature", "N", "Gauss-Hermite nodes per axis for e_I (default 6)",
-    [s](const std::string& v) { s->SetQuadratureOrder(pss_cli::ToInt("quadrature", v)); });
-  t.Value("delta-lattice", "S",
-    "integral and delta: spacing in h of the lattice delta is interpolated from (default 0.5; 0: exact at "
-    "every quadrature node)",
-    [s](const std::string& v) {
-      const double spacing = pss_cli::ToDouble("delta-lattice", v);
-      if (!(spacing >= 0.0 && spacing <= 1.0))
-      {
-        // vtkPointSetSurface clamps; a command line says what it refuses.
-        throw pss_cli::UsageError{ "--delta-lattice expects 0 or a lattice spacing in [0.05, 1] h, got '" + v + "'" };
-      }
-      s->SetDeltaLatticeSpacing(spacing);
-    });
-  t.Value("min-stability", "S", "n counts as undefined below this stability (default 1e-5)",
-    [s](const std::string& v) { s->SetMinimumStability(pss_cli::ToDouble("min-stability", v)); });
 }
 
 // Where n and the normals point: the filters' ViewpointMode and Viewpoint.

@@ -19,6 +19,7 @@
 #include "vtkPolyData.h"
 
 #include "pss/PointIndex.h"
+#include "pss/Types.h"
 
 #include <algorithm>
 #include <climits>
@@ -80,6 +81,15 @@ bool PrepareDistributedSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surf
   {
     gathered = nullptr;
     return PrepareSurface(algorithm, surface, cloud, what, false, coordinateOrder);
+  }
+  if (pss::needsNormals(static_cast<pss::Variant>(surface->GetVariant())))
+  {
+    // Every rank alike, before anything collective: the gathered cloud carries no point arrays,
+    // so a Normals array would be lost and the normals estimated instead, unlike one process.
+    vtkErrorWithObjectMacro(algorithm, << "APSS and RIMLS are not supported in a distributed run yet (the cloud's "
+                                          "normals do not travel between ranks); run them in a single process");
+    gathered = nullptr;
+    return false;
   }
   // The whole cloud on every rank makes h, centroid, bounds and every neighbourhood those of the
   // one-process run by construction, whatever the split.

@@ -12,6 +12,7 @@
 #include "PointSetSurfacesSMP.h"
 #include "PointSetSurfacesVTKUtilities.h"
 
+#include "pss/NormalOrientation.h"
 #include "pss/PointIndex.h"
 #include "pss/SurfaceDefinition.h"
 
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <stdexcept>
@@ -29,11 +31,13 @@ vtkStandardNewMacro(vtkPointSetSurface);
 vtkPointSetSurface::vtkPointSetSurface()
 {
   this->SetScaleArrayName("Scale");
+  this->SetNormalsArrayName("Normals");
 }
 
 vtkPointSetSurface::~vtkPointSetSurface()
 {
   this->SetScaleArrayName(nullptr);
+  this->SetNormalsArrayName(nullptr);
 }
 
 const char* vtkPointSetSurface::UseThreadedBackend()
@@ -141,7 +145,7 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud, bool coordinateOrder)
   {
     return this->Fail(std::string("invalid surface parameters: ") + e.what());
   }
-  if (!this->Build(std::move(index), this->AutomaticScale ? 0.0 : this->ScaleFactor, arrayScales))
+  if (!this->Build(std::move(index), this->AutomaticScale ? 0.0 : this->ScaleFactor, arrayScales, cloud))
   {
     return false;
   }
@@ -167,6 +171,12 @@ bool vtkPointSetSurface::PreparePiece(
     // The ghost margins would have to follow the largest scale a rank holds: not there yet.
     return this->Fail("a scale per point (PointScales Estimated or FromArray) is not supported in a distributed run "
                       "yet; use PointScales Off or Automatic (one h over the ranks) or a single process");
+  }
+  if (pss::needsNormals(static_cast<pss::Variant>(this->Variant)))
+  {
+    // The normals would have to travel with the ghost points: not there yet.
+    return this->Fail("APSS and RIMLS are not supported in a distributed run yet (the cloud's normals do not travel "
+                      "with the ghost points); run them in a single process");
   }
   std::unique_ptr<pss::PointIndex> index;
   try
@@ -228,6 +238,10 @@ pss::SurfaceParameters vtkPointSetSurface::Parameters(double h) const
   params.quadratureOrder = this->QuadratureOrder;
   params.deltaLattice = this->DeltaLatticeSpacing;
   params.minStability = this->MinimumStability;
+  params.sphericity = this->Sphericity;
+  params.sigmaNormal = this->SigmaNormal;
+  params.sigmaResidual = this->SigmaResidual;
+  params.robustRefits = this->RobustRefits;
   return params;
 }
 
@@ -264,11 +278,56 @@ double vtkPointSetSurface::ChooseScales(pss::PointIndex& index, const std::vecto
   return own[own.size() / 2];
 }
 
-bool vtkPointSetSurface::Build(std::unique_ptr<pss::PointIndex> index, double h, const std::vector<double>& arrayScales)
+bool vtkPointSetSurface::SetCloudNormals(pss::PointIndex& index, const pss::SurfaceParameters& params, vtkPointSet* cloud)
+{
+  const char* name = this->NormalsArrayName ? this->NormalsArrayName : "";
+  vtkDataArray* given = cloud && *name ? cloud->GetPointData()->GetArray(name) : nullptr;
+  std::vector<pss::Vec3> normals;
+  if (given)
+  {
+    if (given->GetNumberOfComponents() != 3 || given->GetNumberOfTuples() != cloud->GetNumberOfPoints())
+    {
+      return this->Fail(std::string("the normals array \"") + name + "\" must have 3 components and one tuple per point");
+    }
+    normals.resize(static_cast<std::size_t>(given->GetNumberOfTuples()));
+    for (vtkIdType i = 0; i < given->GetNumberOfTuples(); ++i)
+    {
+      given->GetTuple(i, normals[static_cast<std::size_t>(i)].data());
+    }
+    this->NormalsSource = "array";
+  }
+  else
+  {
+    std::optional<pss::Vec3> viewpoint;
+    vtkDataArray* field = cloud ? cloud->GetFieldData()->GetArray("Viewpoint") : nullptr;
+    if (field && field->GetNumberOfValues() >= 3)
+    {
+      const int components = field->GetNumberOfComponents();
+      pss::Vec3 v;
+      for (int k = 0; k < 3; ++k)
+      {
+        v[k] = field->GetComponent(k / components, k % components);
+      }
+      viewpoint = v;
+    }
+    std::size_t borrowed = 0;
+    normals = pss::estimateOrientedNormals(
+      index, params, viewpoint, static_cast<std::size_t>(this->NormalNeighbors), pss_vtk::CoreThreads(), &borrowed);
+    this->BorrowedNormals = static_cast<vtkIdType>(borrowed);
+    this->NormalsSource = "estimated";
+  }
+  index.setNormals(normals); // throws, naming the point, for a zero or NaN normal
+  return true;
+}
+
+bool vtkPointSetSurface::Build(
+  std::unique_ptr<pss::PointIndex> index, double h, const std::vector<double>& arrayScales, vtkPointSet* cloud)
 {
   this->SkippedPoints = static_cast<vtkIdType>(index->skippedCount());
   this->UsesPointScales = false;
   this->ScaleSpread = 0.0;
+  this->NormalsSource.clear();
+  this->BorrowedNormals = 0;
   if (index->empty())
   {
     return this->Fail("the point cloud has no point with finite coordinates");
@@ -289,6 +348,10 @@ bool vtkPointSetSurface::Build(std::unique_ptr<pss::PointIndex> index, double h,
             << "set ScaleFactor and turn AutomaticScale off";
         return this->Fail(msg.str());
       }
+    }
+    if (pss::needsNormals(static_cast<pss::Variant>(this->Variant)) && !this->SetCloudNormals(*index, params, cloud))
+    {
+      return false;
     }
     this->Definition = pss::makeSurface(static_cast<pss::Variant>(this->Variant), *index, params);
     this->EffectiveScale = params.h;
@@ -322,6 +385,14 @@ void vtkPointSetSurface::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "QuadratureOrder: " << this->QuadratureOrder << "\n";
   os << indent << "DeltaLatticeSpacing: " << this->DeltaLatticeSpacing << "\n";
   os << indent << "MinimumStability: " << this->MinimumStability << "\n";
+  os << indent << "NormalsArrayName: " << (this->NormalsArrayName ? this->NormalsArrayName : "(none)") << "\n";
+  os << indent << "NormalNeighbors: " << this->NormalNeighbors << "\n";
+  os << indent << "Sphericity: " << this->Sphericity << "\n";
+  os << indent << "SigmaNormal: " << this->SigmaNormal << "\n";
+  os << indent << "SigmaResidual: " << this->SigmaResidual << "\n";
+  os << indent << "RobustRefits: " << this->RobustRefits << "\n";
+  os << indent << "NormalsSource: " << this->NormalsSource << "\n";
+  os << indent << "BorrowedNormals: " << this->BorrowedNormals << "\n";
   os << indent << "EffectiveScale: " << this->EffectiveScale << "\n";
   os << indent << "EffectiveDimension: " << this->EffectiveDimension << "\n";
   os << indent << "NumberOfSkippedPoints: " << this->SkippedPoints << "\n";

@@ -4,7 +4,8 @@
  * @brief   which point-set surface to use, and at what scale: shared by every PointSetSurfaces filter
  *
  * vtkPointSetSurface describes one of the five surface definitions of Amenta & Kil, "The Domain
- * of a Point Set Surface" (LevinMLS, NormalizedMLS, CenterOfMass, Integral, Delta), the Gaussian
+ * of a Point Set Surface" (LevinMLS, NormalizedMLS, CenterOfMass, Integral, Delta) or one of the
+ * two that fit points with oriented normals (APSS, RIMLS; see NormalsArrayName), the Gaussian
  * scale h, the dimension of the cloud and the numerical settings of the kernel. The filters
  * (vtkPointSetSurfaceProjection, vtkPointSetSurfaceDomainClassifier,
  * vtkPointSetSurfaceFieldSampler, vtkPointSetSurfaceEnergyGlyphs, vtkPointSetSurfaceMesher) and
@@ -68,7 +69,9 @@ public:
     NORMALIZED_MLS = 1,
     CENTER_OF_MASS = 2,
     INTEGRAL = 3,
-    DELTA = 4
+    DELTA = 4,
+    APSS = 5,
+    RIMLS = 6
   };
 
   /// How h is chosen when AutomaticScale is on (see the class description).
@@ -93,13 +96,15 @@ public:
    * The surface definition. Default CENTER_OF_MASS: cheap, and with a wide domain on smooth
    * surfaces (Sec. 5 of the paper).
    */
-  vtkSetClampMacro(Variant, int, LEVIN_MLS, DELTA);
+  vtkSetClampMacro(Variant, int, LEVIN_MLS, RIMLS);
   vtkGetMacro(Variant, int);
   void SetVariantToLevinMLS() { this->SetVariant(LEVIN_MLS); }
   void SetVariantToNormalizedMLS() { this->SetVariant(NORMALIZED_MLS); }
   void SetVariantToCenterOfMass() { this->SetVariant(CENTER_OF_MASS); }
   void SetVariantToIntegral() { this->SetVariant(INTEGRAL); }
   void SetVariantToDelta() { this->SetVariant(DELTA); }
+  void SetVariantToAPSS() { this->SetVariant(APSS); }
+  void SetVariantToRIMLS() { this->SetVariant(RIMLS); }
   ///@}
 
   ///@{
@@ -214,6 +219,44 @@ public:
   ///@}
 
   ///@{
+  /**
+   * APSS and RIMLS fit points with oriented normals. They are read from the point array of this
+   * name when the cloud has one (3 components; default "Normals", what PLY nx ny nz, VTK and PCD
+   * normal_x/y/z readers give); a zero, NaN or infinite normal fails Prepare, naming the point.
+   * Without such an array they are estimated (the centre-of-mass normal at each point) and
+   * oriented: toward the field data `Viewpoint` when the cloud has one, else by propagation over
+   * the NormalNeighbors-nearest-neighbour graph (pss/NormalOrientation.h). Points without a
+   * normal of their own (isolated) borrow their nearest neighbour's (GetBorrowedNormals()).
+   */
+  vtkSetStringMacro(NormalsArrayName);
+  vtkGetStringMacro(NormalsArrayName);
+  vtkSetClampMacro(NormalNeighbors, int, 1, 100);
+  vtkGetMacro(NormalNeighbors, int);
+  ///@}
+
+  ///@{
+  /// APSS: how much of the fitted sphere's curvature is kept, in [0, 1] (1, the default: the
+  /// algebraic sphere; 0: a plane fitted to the points and normals).
+  vtkSetClampMacro(Sphericity, double, 0.0, 1.0);
+  vtkGetMacro(Sphericity, double);
+  ///@}
+
+  ///@{
+  /**
+   * RIMLS's robust weights: sigma_n for the normals (unitless, default 0.75; smaller keeps sharp
+   * edges sharper), sigma_r for the residuals in units of the local h (default 0.5; smaller
+   * discounts outliers more), and the number of refits after the first fit (default 3, fixed so
+   * that the surface is continuous in space).
+   */
+  vtkSetClampMacro(SigmaNormal, double, 0.01, 100.0);
+  vtkGetMacro(SigmaNormal, double);
+  vtkSetClampMacro(SigmaResidual, double, 0.01, 100.0);
+  vtkGetMacro(SigmaResidual, double);
+  vtkSetClampMacro(RobustRefits, int, 0, 100);
+  vtkGetMacro(RobustRefits, int);
+  ///@}
+
+  ///@{
   /// Below this stability n(x) counts as undefined. Default 1e-5.
   vtkSetClampMacro(MinimumStability, double, 0.0, 0.999);
   vtkGetMacro(MinimumStability, double);
@@ -240,6 +283,10 @@ public:
   int GetEffectiveDimension() const { return this->EffectiveDimension; }
   /// Points of the last prepared cloud left out for NaN or infinite coordinates.
   vtkIdType GetNumberOfSkippedPoints() const { return this->SkippedPoints; }
+  /// After a Prepare() for APSS or RIMLS: "array" (NormalsArrayName) or "estimated"; else "".
+  const char* GetNormalsSource() const { return this->NormalsSource.c_str(); }
+  /// After a Prepare() that estimated normals: the points that borrowed a neighbour's.
+  vtkIdType GetBorrowedNormals() const { return this->BorrowedNormals; }
 
   /**
    * Lets the filters use every core: switches vtkSMPTools from its Sequential backend (the
@@ -306,6 +353,12 @@ protected:
   int QuadratureOrder = 6;
   double DeltaLatticeSpacing = 0.5;
   double MinimumStability = 1e-5;
+  char* NormalsArrayName = nullptr;
+  int NormalNeighbors = 10;
+  double Sphericity = 1.0;
+  double SigmaNormal = 0.75;
+  double SigmaResidual = 0.5;
+  int RobustRefits = 3;
 
 private:
   vtkPointSetSurface(const vtkPointSetSurface&) = delete;
@@ -316,7 +369,13 @@ private:
   pss::SurfaceParameters Parameters(double h) const;
   /// Takes @p index and builds the definition at @p h (<= 0: the automatic scale over it, or
   /// @p arrayScales, the ScaleArrayName values in input order, with POINT_SCALES_FROM_ARRAY).
-  bool Build(std::unique_ptr<pss::PointIndex> index, double h, const std::vector<double>& arrayScales = {});
+  /// @p cloud, when given, brings the normals APSS and RIMLS need (or the Viewpoint that orients
+  /// estimated ones).
+  bool Build(std::unique_ptr<pss::PointIndex> index, double h, const std::vector<double>& arrayScales = {},
+    vtkPointSet* cloud = nullptr);
+  /// Gives @p index the normals the variant needs, from @p cloud's array or estimated (see
+  /// NormalsArrayName); false with the error set.
+  bool SetCloudNormals(pss::PointIndex& index, const pss::SurfaceParameters& params, vtkPointSet* cloud);
   /// Sets the per-point scales PointScales asks for on @p index, or none; the h to use (0: failed).
   double ChooseScales(pss::PointIndex& index, const std::vector<double>& arrayScales);
 
@@ -326,6 +385,8 @@ private:
   vtkMTimeType PreparedTime = 0;
   bool PreparedCoordinateOrder = false;
   std::string LastError;
+  std::string NormalsSource;
+  vtkIdType BorrowedNormals = 0;
   double EffectiveScale = 0.0;
   bool UsesPointScales = false;
   double ScaleSpread = 0.0;

@@ -249,8 +249,12 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.minPieceArea = this->MinPieceArea;
   options.coveredPieceArea = this->CoveredPieceArea;
   options.maxBandCells = static_cast<std::size_t>(this->MaximumNumberOfBandCells);
+  // APSS's and RIMLS's plane procedure is their own projection onto their fit (the same zero set
+  // as the extremal one, without a line search).
+  const int variant = this->Surface->GetVariant();
+  const bool ownStep = pss::needsNormals(static_cast<pss::Variant>(variant));
   this->UsedProcedure = this->Procedure != AUTOMATIC ? this->Procedure
-    : this->Surface->GetUsesPointScales() && this->Surface->GetVariant() == vtkPointSetSurface::CENTER_OF_MASS
+    : ownStep || (this->Surface->GetUsesPointScales() && variant == vtkPointSetSurface::CENTER_OF_MASS)
     ? PLANE
     : EXTREMAL;
   options.projection.procedure = this->UsedProcedure == PLANE ? pss::Procedure::Plane : pss::Procedure::Extremal;

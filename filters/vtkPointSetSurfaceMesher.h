@@ -114,7 +114,8 @@ public:
    * How the crossings are projected: EXTREMAL (Definition 1), PLANE (the centre-of-mass fast path,
    * x <- x - <n, x - c(x)> n) or AUTOMATIC (the default): PLANE for the centre of mass with a
    * scale per point (a sensor frame: the same pieces and holes at 0.4-0.55x the time, measured in
-   * docs/adaptive-scale.md), EXTREMAL otherwise, so a cloud of even density is meshed as before.
+   * docs/adaptive-scale.md) and for APSS and RIMLS (whose plane procedure is their own projection
+   * onto their fit), EXTREMAL otherwise, so a cloud of even density is meshed as before.
    * GetUsedProcedure() says which one the last run took.
    */
   vtkSetClampMacro(Procedure, int, EXTREMAL, AUTOMATIC);

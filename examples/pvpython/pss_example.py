@@ -17,7 +17,8 @@ TREE = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
 # (the Variant property). Both come from the core's variant table; the test
 # VariantTable.EveryFaceAgrees fails if this dictionary drifts from it.
 VARIANTS = {"levin": "Levin MLS", "normalized": "Normalized MLS", "com": "Center of Mass",
-            "integral": "Integral Energy", "delta": "Delta Energy"}
+            "integral": "Integral Energy", "delta": "Delta Energy", "apss": "APSS (Algebraic Spheres)",
+            "rimls": "RIMLS (Robust Implicit MLS)"}
 
 
 def parse_size(text, min_width=16, min_height=16):

@@ -45,7 +45,8 @@ def project(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, sca
         The points to project; by default the cloud's own points.
     variant : str
         The surface definition: "levin", "normalized", "com" (centre of mass, the default),
-        "integral" or "delta" (see ``VARIANTS``).
+        "integral", "delta", "apss" or "rimls" (see ``VARIANTS``). APSS and RIMLS read oriented
+        normals from a vtkPointSet cloud's ``Normals`` array, or estimate and orient them.
     h : float, optional
         The Gaussian scale. None (default): automatic, ``scale_multiplier`` times the median
         distance to the ``scale_neighbors``-th nearest neighbour. h <= 0 raises Error.

@@ -34,7 +34,7 @@ class SurfaceWarning(UserWarning):
 #: The surface definitions, by the names the ``pss`` tool takes (``--variant``), in the order of
 #: vtkPointSetSurface's enum. Case, ``-``, ``_`` and spaces do not count, and the VTK spellings
 #: ("LevinMLS", "CenterOfMass", ...) and "mls" (Levin's) are accepted too.
-VARIANTS = ("levin", "normalized", "com", "integral", "delta")
+VARIANTS = ("levin", "normalized", "com", "integral", "delta", "apss", "rimls")
 _VARIANT_ALIASES = {"levinmls": 0, "mls": 0, "normalizedmls": 1, "centerofmass": 2}
 _PROCEDURES = ("extremal", "plane")
 _ORIENTATIONS = ("away-from-centroid", "away-from-point", "along-direction", "propagate")

@@ -202,3 +202,31 @@ TEST(Cli, ProjectPropagatesNormals)
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.output.find("--normal-neighbors must be within [1, 100]"), std::string::npos) << r.output;
 }
+
+TEST(Cli, ApssAndRimlsProjectOntoASphere)
+{
+  const std::string cloud = TempPath("apss-sphere.vtp");
+  const std::string out = TempPath("apss-sphere-projected.vtp");
+  CommandResult r = RunCommand(Pss() + " generate --scene sphere --dimension 3 --count 2000 --size 20 --noise 0 -o " + cloud);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const std::string variant : { "apss", "rimls" })
+  {
+    r = RunCommand(Pss() + " project " + cloud + " --variant " + variant +
+      " --procedure plane --sphericity 1 --sigma-n 0.75 --sigma-r 0.5 --robust-refits 3 -o " + out);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    vtkSmartPointer<vtkPolyData> projected = ReadFrame(out);
+    ASSERT_EQ(projected->GetNumberOfPoints(), 2000);
+    vtkDataArray* converged = projected->GetPointData()->GetArray("Converged");
+    ASSERT_NE(converged, nullptr);
+    for (vtkIdType i = 0; i < projected->GetNumberOfPoints(); ++i)
+    {
+      ASSERT_EQ(converged->GetComponent(i, 0), 1.0) << variant << " point " << i;
+    }
+  }
+  r = RunCommand(Pss() + " project " + cloud + " --variant apss --sphericity 2 -o " + out);
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("--sphericity"), std::string::npos) << r.output;
+  r = RunCommand(Pss() + " project " + cloud + " --variant rimls --robust-refits 2.5 -o " + out);
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("--robust-refits"), std::string::npos) << r.output;
+}

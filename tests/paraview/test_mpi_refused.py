@@ -1,7 +1,8 @@
 """Run by `mpiexec -np 2 pvbatch --symmetric` (ctest ParaView.Mpi.RefusedInsteadOfWrong): a run with
 more than one process must refuse what does not run distributed (the field sampler with
 OrientationMode Propagate and the projection with PropagateNormals, spanning trees over every
-sample or end point: an error and an empty output)
+sample or end point; APSS and RIMLS, whose cloud normals do not travel between ranks, gathered or
+with ghost points: an error and an empty output)
 instead of computing on each rank's piece alone, which differs from the one-process answer near
 every piece's border without saying so. (Every filter runs distributed otherwise:
 test_mpi_distributed.py.)
@@ -35,7 +36,10 @@ if rank == 0 and cloud.GetDataInformation().GetNumberOfPoints() == 0:
 refused = 0
 for name, proxy in (("sampler", PointSetSurfaceFieldSampler(Input=cloud, GenerateSamplingGrid=1,
                                                             OrientationMode="Propagate")),
-                    ("projection", PointSetSurfaceProjection(Input=cloud, PropagateNormals=1))):
+                    ("projection", PointSetSurfaceProjection(Input=cloud, PropagateNormals=1)),
+                    ("apss", PointSetSurfaceProjection(Input=cloud, Variant="APSS (Algebraic Spheres)")),
+                    ("rimls ghosts", PointSetSurfaceProjection(Input=cloud, Variant="RIMLS (Robust Implicit MLS)",
+                                                               GhostMargin=3.0))):
     proxy.UpdatePipeline()
     points = proxy.GetDataInformation().GetNumberOfPoints()
     if points != 0:
@@ -43,6 +47,6 @@ for name, proxy in (("sampler", PointSetSurfaceFieldSampler(Input=cloud, Generat
     refused += 1
     if rank == 0:
         print("ok   %-12s refused in a %d-process run" % (name, ranks), flush=True)
-if refused != 2:
-    sys.exit("only %d of 2 filters checked" % refused)
+if refused != 4:
+    sys.exit("only %d of 4 filters checked" % refused)
 # Success ends the script normally: pvbatch then finalizes MPI on every rank (sys.exit would not).

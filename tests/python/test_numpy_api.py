@@ -409,8 +409,9 @@ class ErrorsTest(unittest.TestCase):
 
     def test_parameters_refused(self):
         cloud = sphere(200)
-        self.assert_raises_quietly(pss.InputError, "variant must be one of levin, normalized, com, integral, delta",
-                                   pss.project, cloud, variant="apss")
+        self.assert_raises_quietly(pss.InputError,
+                                   "variant must be one of levin, normalized, com, integral, delta, apss, rimls",
+                                   pss.project, cloud, variant="mls2")
         self.assert_raises_quietly(pss.InputError, "tolerance must be within", pss.project, cloud, tolerance=5.0)
         self.assert_raises_quietly(pss.InputError, "cell must be within", pss.mesh, cloud, cell=0.01)
         # A clamp would let NaN through to the filter.

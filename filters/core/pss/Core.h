@@ -10,6 +10,7 @@
 #include "pss/Domain.h"
 #include "pss/ExtremalSurface.h"
 #include "pss/Kernel.h"
+#include "pss/NormalOrientation.h"
 #include "pss/Parallel.h"
 #include "pss/PointIndex.h"
 #include "pss/Quadrature.h"

@@ -4,6 +4,7 @@
 
 #include "pss/Workspace.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -20,13 +21,6 @@ Vec3 weightedNormalSum(const Neighbourhood& nb, const Eigen::Ref<const Eigen::Ar
 {
   const Eigen::Index c = nb.count;
   return Vec3((w * nb.nx.head(c)).sum(), (w * nb.ny.head(c)).sum(), (w * nb.nz.head(c)).sum());
-}
-
-// The neighbours' (p_i - x) . n_i.
-auto normalOffsets(const Neighbourhood& nb)
-{
-  const Eigen::Index c = nb.count;
-  return nb.x() * nb.nx.head(c) + nb.y() * nb.ny.head(c) + nb.z() * nb.nz.head(c);
 }
 
 NormalFit undefinedFit(double stability)
@@ -49,7 +43,8 @@ NormalFit sphereFit(const Neighbourhood& nb, const SurfaceParameters& params)
   const Vec3 P = nb.moment / W;
   const Vec3 N = weightedNormalSum(nb, w) / W;
   const double stability = N.norm();
-  const double meanRN = (w * normalOffsets(nb)).sum() / W;
+  const Eigen::Index c = nb.count;
+  const double meanRN = (w * (nb.x() * nb.nx.head(c) + nb.y() * nb.ny.head(c) + nb.z() * nb.nz.head(c))).sum() / W;
   const double meanRR = (w * nb.d2()).sum() / W;
   const double spread = meanRR - P.squaredNorm(); // the weighted variance of the positions
   const double scale = nb.localScale;
@@ -83,43 +78,68 @@ NormalFit sphereFit(const Neighbourhood& nb, const SurfaceParameters& params)
 // (k_i = 1 / h_i^2), whose gradient is 2 k_i w_i r_i. Each refit multiplies the weights by
 // exp(-((f_i - f) / (sigma_r h))^2 - (|n_i - grad f| / sigma_n)^2) with f_i = (x - p_i) . n_i and
 // f, grad f of the previous fit: points far off the others' surface, and normals across a sharp
-// edge, count less. A fixed number of refits keeps f continuous in x.
+// edge, count less. A fixed number of refits keeps f continuous in x. Each fit is one pass over
+// the neighbours; @p inverseSqScale(i) is k_i.
 template <class InverseSqScale>
-NormalFit robustFit(Neighbourhood& nb, const SurfaceParameters& params, const InverseSqScale& k)
+NormalFit robustFit(Neighbourhood& nb, const SurfaceParameters& params, InverseSqScale inverseSqScale)
 {
   const Eigen::Index c = nb.count;
-  auto ww = nb.robust.head(c);
-  const auto residual = -normalOffsets(nb); // f_i = (x - p_i) . n_i
+  const double* rx = nb.dx.data();
+  const double* ry = nb.dy.data();
+  const double* rz = nb.dz.data();
+  const double* nx = nb.nx.data();
+  const double* ny = nb.ny.data();
+  const double* nz = nb.nz.data();
+  const double* w = nb.weight.data();
+  // The refits' weights: their exponents (never positive) then expNonPositive, several at a time.
+  double* robust = nb.robust.data();
   const double sigmaR = params.sigmaResidual * nb.localScale;
+  const double residualFactor = 1.0 / (sigmaR * sigmaR);
+  const double normalFactor = 1.0 / (params.sigmaNormal * params.sigmaNormal);
   double f = 0.0;
   Vec3 grad = Vec3::Zero();
   double W = 0.0;
   Vec3 sumN = Vec3::Zero();
   for (int refit = 0; refit <= params.robustRefits; ++refit)
   {
-    if (refit == 0)
+    const double gg = grad.squaredNorm();
+    if (refit > 0)
     {
-      ww = nb.w();
+      for (Eigen::Index i = 0; i < c; ++i)
+      {
+        const double residual = -(rx[i] * nx[i] + ry[i] * ny[i] + rz[i] * nz[i]) - f;
+        const double normalGap = 1.0 - 2.0 * (nx[i] * grad.x() + ny[i] * grad.y() + nz[i] * grad.z()) + gg;
+        robust[i] = std::min(0.0, -residual * residual * residualFactor - normalGap * normalFactor);
+      }
+      expNonPositive(robust, robust, c);
     }
-    else
+    double sumW = 0.0, sumF = 0.0;
+    double sumG[3] = { 0.0, 0.0, 0.0 }, sumGF[3] = { 0.0, 0.0, 0.0 }, sumNormal[3] = { 0.0, 0.0, 0.0 };
+    for (Eigen::Index i = 0; i < c; ++i)
     {
-      const double gg = grad.squaredNorm();
-      const auto normalGap = 1.0 - 2.0 * (nb.nx.head(c) * grad.x() + nb.ny.head(c) * grad.y() + nb.nz.head(c) * grad.z()) + gg;
-      ww = nb.w() *
-        (-(residual - f).square() / (sigmaR * sigmaR) - normalGap / (params.sigmaNormal * params.sigmaNormal)).exp();
+      const double fi = -(rx[i] * nx[i] + ry[i] * ny[i] + rz[i] * nz[i]); // (x - p_i) . n_i
+      const double wi = refit > 0 ? w[i] * robust[i] : w[i];
+      const double wk = 2.0 * wi * inverseSqScale(i);
+      sumW += wi;
+      sumF += wi * fi;
+      sumG[0] += wk * rx[i];
+      sumG[1] += wk * ry[i];
+      sumG[2] += wk * rz[i];
+      sumGF[0] += wk * fi * rx[i];
+      sumGF[1] += wk * fi * ry[i];
+      sumGF[2] += wk * fi * rz[i];
+      sumNormal[0] += wi * nx[i];
+      sumNormal[1] += wi * ny[i];
+      sumNormal[2] += wi * nz[i];
     }
-    W = ww.sum();
+    W = sumW;
     if (!(W > 0.0) || !std::isfinite(W))
     {
       return undefinedFit(0.0);
     }
-    f = (ww * residual).sum() / W;
-    const auto wk = ww * k;
-    const Vec3 sumG(2.0 * (wk * nb.x()).sum(), 2.0 * (wk * nb.y()).sum(), 2.0 * (wk * nb.z()).sum());
-    const auto wkf = wk * residual;
-    const Vec3 sumGF(2.0 * (wkf * nb.x()).sum(), 2.0 * (wkf * nb.y()).sum(), 2.0 * (wkf * nb.z()).sum());
-    sumN = weightedNormalSum(nb, ww);
-    grad = (sumGF - f * sumG + sumN) / W;
+    f = sumF / W;
+    sumN = Vec3(sumNormal[0], sumNormal[1], sumNormal[2]);
+    grad = (Vec3(sumGF[0], sumGF[1], sumGF[2]) - f * Vec3(sumG[0], sumG[1], sumG[2]) + sumN) / W;
   }
   const double stability = sumN.norm() / W;
   const double g = grad.norm();
@@ -147,7 +167,13 @@ NormalFit fitWithNormals(
   {
     return sphereFit(nb, params);
   }
-  return nb.scaled ? robustFit(nb, params, nb.k()) : robustFit(nb, params, nb.invH2);
+  if (nb.scaled)
+  {
+    const double* k = nb.inverseSqScale.data();
+    return robustFit(nb, params, [k](Eigen::Index i) { return k[i]; });
+  }
+  const double k = nb.invH2;
+  return robustFit(nb, params, [k](Eigen::Index) { return k; });
 }
 
 NormalFitDirection::NormalFitDirection(const PointIndex& index, const SurfaceParameters& params, NormalFitKind kind)
