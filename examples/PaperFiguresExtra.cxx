@@ -5,6 +5,8 @@
 // residual segments, circles, the band, a chart) and reports.
 #include "PaperFiguresExtra.h"
 
+#include "pss/Types.h"
+
 #include "vtkPointSetSurfaceFieldSampler.h"
 
 #include "vtkCellArray.h"
@@ -388,6 +390,20 @@ std::vector<BandMeasure> Figure8(const Scene& noisy, std::vector<Check>& checks)
     "Fig. 8: n_I changes much more smoothly: median total variation of n_MLS in the band (" +
       Fixed(lv->medianVariationInBand, 1) + " deg) over n_I's (" + Fixed(in->medianVariationInBand, 1) + " deg)",
     factor, ">= " + Fixed(kSmoothnessFactor, 0), factor >= kSmoothnessFactor });
+  // Beyond the paper: the definitions that fit normals see the curve's side in every neighbour's
+  // normal, so their n should hold across the band at least as well as n_I.
+  for (const BandMeasure& m : rows)
+  {
+    if (pss::needsNormals(static_cast<pss::Variant>(m.variant)))
+    {
+      checks.push_back({ "fig08." + VariantName(m.variant) + "_max_angle_deg",
+        "beyond the paper: " + VariantTitle(m.variant) + "'s n stays as close to the true normal across the band as n_I "
+          "(median over the paths of the largest angle in the band, degrees; " +
+          std::to_string(m.pathsPastTurnInBand) + " paths past 45)",
+        m.medianMaxAngleInBand, "<= " + Fixed(kIntegralMedianMaxAngleInBand, 0) + ", none past 45",
+        m.medianMaxAngleInBand <= kIntegralMedianMaxAngleInBand && m.pathsPastTurnInBand == 0 });
+    }
+  }
   return rows;
 }
 

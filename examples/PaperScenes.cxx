@@ -133,7 +133,8 @@ Scene MakeCornerScene()
 const std::vector<int>& AllVariants()
 {
   static const std::vector<int> variants = { vtkPointSetSurface::LEVIN_MLS, vtkPointSetSurface::NORMALIZED_MLS,
-    vtkPointSetSurface::CENTER_OF_MASS, vtkPointSetSurface::INTEGRAL, vtkPointSetSurface::DELTA };
+    vtkPointSetSurface::CENTER_OF_MASS, vtkPointSetSurface::INTEGRAL, vtkPointSetSurface::DELTA, vtkPointSetSurface::APSS,
+    vtkPointSetSurface::RIMLS };
   return variants;
 }
 
@@ -156,6 +157,10 @@ std::string VariantTitle(int variant)
       return "integral (e_I)";
     case vtkPointSetSurface::DELTA:
       return "delta";
+    case vtkPointSetSurface::APSS:
+      return "APSS";
+    case vtkPointSetSurface::RIMLS:
+      return "RIMLS";
     default:
       return "unknown";
   }

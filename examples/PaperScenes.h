@@ -65,9 +65,9 @@ Scene MakeCornerScene();
 
 /// vtkPointSetSurface::VariantType values of the four definitions of Figure 6 and the delta one.
 const std::vector<int>& AllVariants();
-/// "levin", "normalized", "com", "integral", "delta".
+/// "levin", "normalized", "com", "integral", "delta", "apss", "rimls".
 std::string VariantName(int variant);
-/// "Levin's MLS", "normalized MLS", "center of mass", "integral (e_I)", "delta".
+/// "Levin's MLS", "normalized MLS", "center of mass", "integral (e_I)", "delta", "APSS", "RIMLS".
 std::string VariantTitle(int variant);
 
 /// One vertex per point (double coordinates): sample or start points for the filters.
