@@ -116,6 +116,10 @@ void AddSurfaceOptions(OptionTable& t, vtkPointSetSurface* s)
   t.Value("cloud-normal-neighbors", "K",
     "apss and rimls: neighbours of the graph that orients estimated normals (default 10)",
     [s](const std::string& v) { s->SetNormalNeighbors(IntIn("cloud-normal-neighbors", v, 1, 100)); });
+  t.Switch("reorient-normals",
+    "apss and rimls: choose the signs of the --normals-array normals again, as estimated ones get them "
+    "(repairs normals flipped in places)",
+    [s]() { s->ReorientNormalsOn(); });
   t.Value("sphericity", "S", "apss: 1 fits spheres, 0 planes (default 1)",
     [s](const std::string& v) { s->SetSphericity(ToNumberIn("sphericity", v, 0.0, 1.0)); });
   t.Value("sigma-n", "S", "rimls: the normals' scale; smaller keeps edges sharper (default 0.75)",

@@ -283,6 +283,18 @@ bool vtkPointSetSurface::SetCloudNormals(pss::PointIndex& index, const pss::Surf
   const char* name = this->NormalsArrayName ? this->NormalsArrayName : "";
   vtkDataArray* given = cloud && *name ? cloud->GetPointData()->GetArray(name) : nullptr;
   std::vector<pss::Vec3> normals;
+  std::optional<pss::Vec3> viewpoint;
+  vtkDataArray* field = cloud ? cloud->GetFieldData()->GetArray("Viewpoint") : nullptr;
+  if (field && field->GetNumberOfValues() >= 3)
+  {
+    const int components = field->GetNumberOfComponents();
+    pss::Vec3 v;
+    for (int k = 0; k < 3; ++k)
+    {
+      v[k] = field->GetComponent(k / components, k % components);
+    }
+    viewpoint = v;
+  }
   if (given)
   {
     if (given->GetNumberOfComponents() != 3 || given->GetNumberOfTuples() != cloud->GetNumberOfPoints())
@@ -295,21 +307,26 @@ bool vtkPointSetSurface::SetCloudNormals(pss::PointIndex& index, const pss::Surf
       given->GetTuple(i, normals[static_cast<std::size_t>(i)].data());
     }
     this->NormalsSource = "array";
+    if (this->ReorientNormals)
+    {
+      // setNormals checks them first (zero, NaN), then their signs are chosen again.
+      index.setNormals(normals);
+      std::vector<pss::Vec3> indexed(index.size());
+      for (std::size_t i = 0; i < index.size(); ++i)
+      {
+        indexed[i] = index.normal(i);
+      }
+      pss::orientNormals(
+        index, indexed, viewpoint, static_cast<std::size_t>(this->NormalNeighbors), pss_vtk::CoreThreads());
+      for (std::size_t i = 0; i < index.size(); ++i)
+      {
+        normals[index.originalId(i)] = indexed[i];
+      }
+      this->NormalsSource = "reoriented";
+    }
   }
   else
   {
-    std::optional<pss::Vec3> viewpoint;
-    vtkDataArray* field = cloud ? cloud->GetFieldData()->GetArray("Viewpoint") : nullptr;
-    if (field && field->GetNumberOfValues() >= 3)
-    {
-      const int components = field->GetNumberOfComponents();
-      pss::Vec3 v;
-      for (int k = 0; k < 3; ++k)
-      {
-        v[k] = field->GetComponent(k / components, k % components);
-      }
-      viewpoint = v;
-    }
     std::size_t borrowed = 0;
     normals = pss::estimateOrientedNormals(
       index, params, viewpoint, static_cast<std::size_t>(this->NormalNeighbors), pss_vtk::CoreThreads(), &borrowed);
@@ -387,6 +404,7 @@ void vtkPointSetSurface::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinimumStability: " << this->MinimumStability << "\n";
   os << indent << "NormalsArrayName: " << (this->NormalsArrayName ? this->NormalsArrayName : "(none)") << "\n";
   os << indent << "NormalNeighbors: " << this->NormalNeighbors << "\n";
+  os << indent << "ReorientNormals: " << (this->ReorientNormals ? "On" : "Off") << "\n";
   os << indent << "Sphericity: " << this->Sphericity << "\n";
   os << indent << "SigmaNormal: " << this->SigmaNormal << "\n";
   os << indent << "SigmaResidual: " << this->SigmaResidual << "\n";

@@ -235,6 +235,18 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Given normals are taken as they are by default. With ReorientNormals on, their signs are
+   * chosen again by the rule estimated normals get (toward the Viewpoint, else propagated from
+   * each piece's highest point facing up), which repairs a scan whose normals are flipped in
+   * places. Default off.
+   */
+  vtkSetMacro(ReorientNormals, bool);
+  vtkGetMacro(ReorientNormals, bool);
+  vtkBooleanMacro(ReorientNormals, bool);
+  ///@}
+
+  ///@{
   /// APSS: how much of the fitted sphere's curvature is kept, in [0, 1] (1, the default: the
   /// algebraic sphere; 0: a plane fitted to the points and normals).
   vtkSetClampMacro(Sphericity, double, 0.0, 1.0);
@@ -283,7 +295,8 @@ public:
   int GetEffectiveDimension() const { return this->EffectiveDimension; }
   /// Points of the last prepared cloud left out for NaN or infinite coordinates.
   vtkIdType GetNumberOfSkippedPoints() const { return this->SkippedPoints; }
-  /// After a Prepare() for APSS or RIMLS: "array" (NormalsArrayName) or "estimated"; else "".
+  /// After a Prepare() for APSS or RIMLS: "array" (NormalsArrayName), "reoriented" (the array,
+  /// ReorientNormals on) or "estimated"; else "".
   const char* GetNormalsSource() const { return this->NormalsSource.c_str(); }
   /// After a Prepare() that estimated normals: the points that borrowed a neighbour's.
   vtkIdType GetBorrowedNormals() const { return this->BorrowedNormals; }
@@ -355,6 +368,7 @@ protected:
   double MinimumStability = 1e-5;
   char* NormalsArrayName = nullptr;
   int NormalNeighbors = 10;
+  bool ReorientNormals = false;
   double Sphericity = 1.0;
   double SigmaNormal = 0.75;
   double SigmaResidual = 0.5;

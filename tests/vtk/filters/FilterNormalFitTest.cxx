@@ -14,6 +14,8 @@
 #include "vtkPointSetSurfaceProjection.h"
 #include "vtkSMPTools.h"
 
+#include "pss/PointIndex.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -140,6 +142,50 @@ TEST(FilterNormalFit, EstimatedNormalsAreOrientedAndTheSameOnAnyThreadCount)
     const Point a = pss_test::Coordinates(one, i);
     const Point b = pss_test::Coordinates(two, i);
     ASSERT_TRUE(a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) << "point " << i;
+  }
+}
+
+// Given normals flipped on half of the sphere: taken as given they cancel along the seam, where
+// APSS has no direction; ReorientNormals turns every normal outward and every fit is firm again.
+TEST(FilterNormalFit, ReorientNormalsRepairsAHalfFlippedSphere)
+{
+  auto cloud = sphereWithNormals();
+  vtkDataArray* normals = cloud->GetPointData()->GetArray("Normals");
+  for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+  {
+    if (pss_test::Coordinates(cloud, i)[0] < 0.0)
+    {
+      double n[3];
+      normals->GetTuple(i, n);
+      normals->SetTuple3(i, -n[0], -n[1], -n[2]);
+    }
+  }
+  // Taken as given, the normals cancel along the seam x = 0: n is undefined there.
+  const auto asGiven = project(cloud, vtkPointSetSurface::APSS);
+  vtkIdType weak = 0;
+  for (vtkIdType i = 0; i < asGiven->GetNumberOfPoints(); ++i)
+  {
+    weak += pss_test::Value(asGiven, "Stability", i) < 0.5 ? 1 : 0;
+  }
+  EXPECT_GT(weak, 20) << "flipped normals taken as given";
+  vtkNew<vtkPointSetSurfaceProjection> projection;
+  projection->SetInputData(cloud);
+  projection->GetSurface()->SetVariantToAPSS();
+  projection->GetSurface()->ReorientNormalsOn();
+  projection->SetProcedureToPlane();
+  projection->Update();
+  EXPECT_EQ(std::string(projection->GetSurface()->GetNormalsSource()), "reoriented");
+  const pss::PointIndex* index = projection->GetSurface()->GetIndex();
+  ASSERT_NE(index, nullptr);
+  for (std::size_t i = 0; i < index->size(); ++i)
+  {
+    ASSERT_GT(index->normal(i).dot(index->point(i)), 0.0) << "point " << index->originalId(i) << " not outward";
+  }
+  vtkPolyData* out = projection->GetOutput();
+  EXPECT_LT(worstRadiusError(out), 1e-9);
+  for (vtkIdType i = 0; i < out->GetNumberOfPoints(); ++i)
+  {
+    ASSERT_GT(pss_test::Value(out, "Stability", i), 0.5) << "point " << i;
   }
 }
 
