@@ -31,7 +31,7 @@ __all__ = ["Error", "InputError", "SurfaceWarning", "Result", "VARIANTS", "proje
 
 def project(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0,
             point_scales="automatic", point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0,
-            quadrature=6, delta_lattice=0.5, min_stability=1e-5, procedure="extremal", max_iterations=100,
+            quadrature=6, delta_lattice=0.5, min_stability=1e-5, normals=None, procedure="extremal", max_iterations=100,
             tolerance=1e-6, max_travel=1000.0, seek_maxima=False, propagate_normals=False, normal_neighbors=10, threads=0,
             progress=None, nonfinite="raise", as_polydata=False):
     """Move points onto the point-set surface of a cloud (vtkPointSetSurfaceProjection, ``pss project``).
@@ -76,6 +76,11 @@ def project(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, sca
         evaluates it exactly at every node (values in (0, 0.05) raise Error).
     min_stability : float
         n counts as undefined below this stability (0 to 0.999).
+    normals : None, str or (N, 3) array
+        APSS and RIMLS: the cloud's oriented normals. None (default): the cloud's ``Normals``
+        point array when it has one (a PLY's nx ny nz, a PCD's normal_x/y/z), else estimated and
+        oriented; a name: that 3-component point array; values: one normal per cloud point
+        (zero or NaN ones raise Error, naming the point). The other definitions ignore it.
     procedure : "extremal" or "plane"
         "extremal": the paper's projection to the nearest minimum of the energy along n;
         "plane": the centre-of-mass procedure x <- x - <n, x - c(x)> n.
@@ -127,7 +132,7 @@ def project(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, sca
 
 def classify(cloud, start=None, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0,
              point_scales="automatic", point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0,
-             quadrature=6, delta_lattice=0.5, min_stability=1e-5, procedure="extremal", max_iterations=100,
+             quadrature=6, delta_lattice=0.5, min_stability=1e-5, normals=None, procedure="extremal", max_iterations=100,
              tolerance=1e-6, max_travel=1000.0, seek_maxima=False, propagate_normals=False, normal_neighbors=10,
              max_distance=1.0, max_normal_angle=30.0, threads=0, progress=None, nonfinite="raise", as_polydata=False):
     """Is each start point inside the domain of the surface? (vtkPointSetSurfaceDomainClassifier,
@@ -159,7 +164,7 @@ def _project(filter_, p, extra):
     cloud = _Cloud("cloud", p["cloud"], nonfinite)
     _configure_surface(filter_.GetSurface(), cloud, p["variant"], p["h"], p["scale_neighbors"], p["scale_multiplier"],
                        p["point_scales"], p["point_scale_multiplier"], p["scale_spread"], p["dimension"], p["cutoff"],
-                       p["quadrature"], p["delta_lattice"], p["min_stability"])
+                       p["quadrature"], p["delta_lattice"], p["min_stability"], p["normals"])
     filter_.SetProcedure(_choice("procedure", p["procedure"], _PROCEDURES))
     _set(filter_, "MaxIterations", _number("max_iterations", p["max_iterations"], integer=True), "max_iterations")
     _set(filter_, "Tolerance", _number("tolerance", p["tolerance"]), "tolerance")
@@ -186,7 +191,7 @@ def _project(filter_, p, extra):
 
 def sample(cloud, probe=None, *, grid=None, margin=3.0, variant="com", h=None, scale_neighbors=10,
            scale_multiplier=1.0, point_scales="automatic", point_scale_multiplier=3.0, scale_spread=3.0,
-           dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5, min_stability=1e-5,
+           dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5, min_stability=1e-5, normals=None,
            orientation="away-from-centroid", reference_point=(0.0, 0.0, 0.0), reference_direction=(0.0, 0.0, 1.0),
            domain_labels=False, max_distance=1.0, max_normal_angle=30.0, max_iterations=100, tolerance=1e-6,
            threads=0, progress=None, nonfinite="raise", as_polydata=False):
@@ -227,7 +232,7 @@ def sample(cloud, probe=None, *, grid=None, margin=3.0, variant="com", h=None, s
     sampler = _filters.vtkPointSetSurfaceFieldSampler()
     _configure_surface(sampler.GetSurface(), source, variant, h, scale_neighbors, scale_multiplier, point_scales,
                        point_scale_multiplier, scale_spread, dimension, cutoff, quadrature, delta_lattice,
-                       min_stability)
+                       min_stability, normals)
     sampler.SetOrientationMode(_choice("orientation", orientation, _ORIENTATIONS))
     sampler.SetReferencePoint(*_vector("reference_point", reference_point))
     sampler.SetReferenceDirection(*_vector("reference_direction", reference_direction))
@@ -286,7 +291,7 @@ def _vector(what, value):
 
 def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0, point_scales="automatic",
          point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5,
-         min_stability=1e-5, cell=1.0, band=1.0, adaptive_cells=True, project_vertices=True, procedure="automatic",
+         min_stability=1e-5, normals=None, cell=1.0, band=1.0, adaptive_cells=True, project_vertices=True, procedure="automatic",
          max_distance=1.0,
          max_normal_angle=30.0, max_border_offset=-1.0, max_vertex_travel=2.0, max_seam_angle=80.0, max_fold_angle=60.0,
          max_hole_edges=100, min_piece_area=10.0, covered_piece_area=10.0, max_band_cells=1 << 24, threads=0, progress=None,
@@ -349,7 +354,7 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
     mesher = _filters.vtkPointSetSurfaceMesher()
     _configure_surface(mesher.GetSurface(), source, variant, h, scale_neighbors, scale_multiplier, point_scales,
                        point_scale_multiplier, scale_spread, dimension, cutoff, quadrature, delta_lattice,
-                       min_stability)
+                       min_stability, normals)
     _set(mesher, "CellSize", _number("cell", cell), "cell")
     _set(mesher, "Band", _number("band", band), "band")
     mesher.SetAdaptiveCells(bool(adaptive_cells))

@@ -324,9 +324,41 @@ def _configure_point_scales(surface, cloud, point_scales, point_scale_multiplier
     surface.SetScaleArrayName("Scale")
 
 
+def _configure_normals(surface, cloud, normals):
+    """normals (APSS, RIMLS): None (the cloud's "Normals" array, else estimated), the name of a
+    3-component point array of the cloud, or (N, 3) values, attached to a shallow copy of the cloud."""
+    if normals is None:
+        return
+    if isinstance(normals, str):
+        array = cloud.polydata.GetPointData().GetArray(normals)
+        if array is None or array.GetNumberOfComponents() != 3:
+            raise InputError("normals must be None, the name of a 3-component point array of the cloud or "
+                             "(N, 3) values, got %r" % (normals,))
+        surface.SetNormalsArrayName(normals)
+        return
+    try:
+        values = np.ascontiguousarray(np.asarray(normals, dtype=np.float64))
+    except (TypeError, ValueError):
+        raise InputError("normals must be a name or (N, 3) values, got %r" % (normals,)) from None
+    count = cloud.polydata.GetNumberOfPoints()
+    if values.ndim == 2 and values.shape[1] == 2 and cloud.two_d:
+        values = np.column_stack([values, np.zeros(len(values))])
+    if values.shape != (count, 3):
+        raise InputError("normals must hold one 3-vector per cloud point (%d, 3), got the shape %s"
+                         % (count, values.shape))
+    # Zero and NaN normals are the C++ side's to refuse, naming the point.
+    copy = cloud.polydata.NewInstance()
+    copy.ShallowCopy(cloud.polydata)
+    array = numpy_to_vtk(values, deep=True)
+    array.SetName("Normals")
+    copy.GetPointData().AddArray(array)
+    cloud.polydata = copy
+    surface.SetNormalsArrayName("Normals")
+
+
 def _configure_surface(surface, cloud, variant, h, scale_neighbors, scale_multiplier, point_scales,
                        point_scale_multiplier, scale_spread, dimension, cutoff, quadrature, delta_lattice,
-                       min_stability):
+                       min_stability, normals=None):
     surface.SetVariant(_choice("variant", variant, VARIANTS, _VARIANT_ALIASES))
     if h is None:
         surface.AutomaticScaleOn()
@@ -345,6 +377,7 @@ def _configure_surface(surface, cloud, variant, h, scale_neighbors, scale_multip
     _set(surface, "QuadratureOrder", _number("quadrature", quadrature, integer=True), "quadrature")
     _set(surface, "DeltaLatticeSpacing", _number("delta_lattice", delta_lattice), "delta_lattice")
     _set(surface, "MinimumStability", _number("min_stability", min_stability), "min_stability")
+    _configure_normals(surface, cloud, normals)
 
 
 def _nonfinite(value):

@@ -122,6 +122,20 @@ class ProjectTest(unittest.TestCase):
                     self.assertTrue(np.allclose(np.abs(r.Normal @ normal), 1.0, atol=1e-3))
                     self.assertTrue(np.allclose(r.Displacement, r.points - start))
 
+    def test_apss_with_given_normals_lands_on_the_sphere(self):
+        cloud = sphere(3000)
+        r = pss.project(cloud, variant="apss", normals=cloud, procedure="plane")
+        self.assertTrue(np.all(r.StopReason == 0))
+        self.assertLess(np.abs(np.linalg.norm(r.points, axis=1) - 1.0).max(), 1e-9)
+        self.assertEqual(r.info.get("h") > 0.0, True)
+        with self.assertRaises(pss.InputError):
+            pss.project(cloud, variant="apss", normals=cloud[:10])
+        bad = cloud.copy()
+        bad[5] = 0.0
+        with self.assertRaises(pss.Error) as raised:
+            pss.project(cloud, variant="rimls", normals=bad)
+        self.assertIn("normal of point 5", str(raised.exception))
+
     def test_explicit_h_is_used(self):
         cloud, _, _ = self.plane()
         r = pss.project(cloud, h=2.5, dimension=3)
