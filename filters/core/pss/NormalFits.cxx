@@ -23,6 +23,11 @@ Vec3 weightedNormalSum(const Neighbourhood& nb, const Eigen::Ref<const Eigen::Ar
   return Vec3((w * nb.nx.head(c)).sum(), (w * nb.ny.head(c)).sum(), (w * nb.nz.head(c)).sum());
 }
 
+double clampedStability(double s)
+{
+  return s > 0.0 ? std::min(s, 1.0) : 0.0;
+}
+
 NormalFit undefinedFit(double stability)
 {
   NormalFit out;
@@ -42,7 +47,8 @@ NormalFit sphereFit(const Neighbourhood& nb, const SurfaceParameters& params)
   const auto w = nb.w();
   const Vec3 P = nb.moment / W;
   const Vec3 N = weightedNormalSum(nb, w) / W;
-  const double stability = N.norm();
+  // Within [0, 1] (rounding can carry a mean of unit vectors a hair past 1); NaN counts as 0.
+  const double stability = clampedStability(N.norm());
   const Eigen::Index c = nb.count;
   const double meanRN = (w * (nb.x() * nb.nx.head(c) + nb.y() * nb.ny.head(c) + nb.z() * nb.nz.head(c))).sum() / W;
   const double meanRR = (w * nb.d2()).sum() / W;
@@ -53,7 +59,7 @@ NormalFit sphereFit(const Neighbourhood& nb, const SurfaceParameters& params)
   Vec3 ul = N - 2.0 * uq * P;
   double u0 = -ul.dot(P) - uq * meanRR;
   const double pratt = ul.squaredNorm() - 4.0 * u0 * uq;
-  if (!(pratt > 0.0) || !std::isfinite(pratt) || !(stability >= params.minStability))
+  if (!(pratt > 0.0) || !std::isfinite(pratt) || !(stability > params.minStability))
   {
     return undefinedFit(stability);
   }
@@ -141,9 +147,9 @@ NormalFit robustFit(Neighbourhood& nb, const SurfaceParameters& params, InverseS
     sumN = Vec3(sumNormal[0], sumNormal[1], sumNormal[2]);
     grad = (Vec3(sumGF[0], sumGF[1], sumGF[2]) - f * Vec3(sumG[0], sumG[1], sumG[2]) + sumN) / W;
   }
-  const double stability = sumN.norm() / W;
+  const double stability = clampedStability(sumN.norm() / W);
   const double g = grad.norm();
-  if (!(g > 0.0) || !std::isfinite(g) || !std::isfinite(f) || !(stability >= params.minStability))
+  if (!(g > 0.0) || !std::isfinite(g) || !std::isfinite(f) || !(stability > params.minStability))
   {
     return undefinedFit(stability);
   }

@@ -48,29 +48,28 @@ void gatherOrientedNeighbourhood(
   {
     throw std::invalid_argument("this definition needs an oriented normal at every cloud point");
   }
+  const Vec3 origin = index.restrict(y);
+  const bool kept = nb.indexSerial == index.serial() && nb.h == params.h && nb.cutoff == params.cutoff &&
+    nb.origin == origin;
   gatherNeighbourhood(index, params, y, nb, ws);
   if (nb.withNormals)
   {
     return;
   }
-  // The neighbourhood is the selection gatherNeighbourhood made from whichever cache served it;
-  // pick the same candidates again, by the same test (compactTail's and compactScaledTail's in
-  // KernelDispatch.cxx), to know which points they are. Any cache that covers the query holds
-  // them, in the same order.
-  auto coverer = [&]() -> const CandidateCache* {
-    if (ws.focused.covers(index, params, nb.origin))
-    {
-      return &ws.focused;
-    }
-    return ws.wide.covers(index, params, nb.origin) ? &ws.wide : nullptr;
+  // The neighbourhood is the selection gatherNeighbourhood made from the cache that served it
+  // (the focused one when it covers the query, else the wide one, fetched anew when needed); pick
+  // the same candidates again, by the same test (compactTail's and compactScaledTail's in
+  // KernelDispatch.cxx), to know which points they are.
+  auto served = [&]() -> const CandidateCache* {
+    return ws.focused.covers(index, params, nb.origin) ? &ws.focused : &ws.wide;
   };
-  const CandidateCache* cache = coverer();
-  if (!cache)
+  const CandidateCache* cache = served();
+  if (kept && !cache->covers(index, params, nb.origin))
   {
-    // The neighbourhood was kept from an earlier gather whose candidates have moved on since.
+    // Kept from an earlier gather whose candidates have moved on since: gather it again.
     nb.indexSerial = 0;
     gatherNeighbourhood(index, params, y, nb, ws);
-    cache = coverer();
+    cache = served();
   }
   const Eigen::Index m = cache->count;
   const auto sq = cache->squaredDistances(nb.origin, ws.candidateSq);
