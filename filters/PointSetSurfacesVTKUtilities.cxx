@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "PointSetSurfacesVTKUtilities.h"
 
+#include "vtkDataArray.h"
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -44,6 +45,21 @@ std::vector<pss::Vec3> ToVectors(vtkPoints* points, int threads)
     }
   });
   return out;
+}
+
+bool CloudViewpoint(vtkDataObject* cloud, double xyz[3])
+{
+  vtkDataArray* field = cloud ? cloud->GetFieldData()->GetArray("Viewpoint") : nullptr;
+  if (!field || field->GetNumberOfValues() < 3)
+  {
+    return false;
+  }
+  const int components = field->GetNumberOfComponents();
+  for (int k = 0; k < 3; ++k)
+  {
+    xyz[k] = field->GetComponent(k / components, k % components);
+  }
+  return true;
 }
 
 vtkIdType PointAt(vtkPoints* points, const double x[3])

@@ -42,6 +42,10 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, vtkIdType tuples, int compone
   return array;
 }
 
+/// The sensor position a cloud carries (its field data `Viewpoint`, the first three values, as
+/// vtkPCDReader and the depth-camera source write it) into @p xyz; false when it has none.
+bool CloudViewpoint(vtkDataObject* cloud, double xyz[3]);
+
 /// The first of @p points at @p x (within 1e-12 of the points' bounding-box diagonal), or -1.
 vtkIdType PointAt(vtkPoints* points, const double x[3]);
 

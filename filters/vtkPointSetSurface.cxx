@@ -284,15 +284,8 @@ bool vtkPointSetSurface::SetCloudNormals(pss::PointIndex& index, const pss::Surf
   vtkDataArray* given = cloud && *name ? cloud->GetPointData()->GetArray(name) : nullptr;
   std::vector<pss::Vec3> normals;
   std::optional<pss::Vec3> viewpoint;
-  vtkDataArray* field = cloud ? cloud->GetFieldData()->GetArray("Viewpoint") : nullptr;
-  if (field && field->GetNumberOfValues() >= 3)
+  if (pss::Vec3 v; pss_vtk::CloudViewpoint(cloud, v.data()))
   {
-    const int components = field->GetNumberOfComponents();
-    pss::Vec3 v;
-    for (int k = 0; k < 3; ++k)
-    {
-      v[k] = field->GetComponent(k / components, k % components);
-    }
     viewpoint = v;
   }
   if (given)

@@ -6,8 +6,6 @@
 #include "PointSetSurfacesVTKUtilities.h"
 #include "vtkPointSetSurface.h"
 
-#include "vtkDataArray.h"
-#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkMultiProcessController.h"
 #include "vtkPointSet.h"
@@ -97,18 +95,9 @@ bool vtkPointSetSurfaceAlgorithm::ResolveViewpoint(vtkPointSet* cloud)
   {
     std::copy(this->Viewpoint, this->Viewpoint + 3, viewpoint);
   }
-  else
+  else if (!pss_vtk::CloudViewpoint(cloud, viewpoint))
   {
-    vtkDataArray* field = cloud ? cloud->GetFieldData()->GetArray("Viewpoint") : nullptr;
-    if (!field || field->GetNumberOfValues() < 3)
-    {
-      return true;
-    }
-    const int components = field->GetNumberOfComponents();
-    for (int k = 0; k < 3; ++k)
-    {
-      viewpoint[k] = field->GetComponent(k / components, k % components);
-    }
+    return true;
   }
   if (!(std::isfinite(viewpoint[0]) && std::isfinite(viewpoint[1]) && std::isfinite(viewpoint[2])))
   {

@@ -288,6 +288,17 @@ def _run(algorithm, threads, progress):
 _POINT_SCALES = ("automatic", "off", "estimated")
 
 
+def _attach_point_array(cloud, values, name):
+    """values as the point array name of a shallow copy of cloud's polydata, never of the
+    caller's dataset."""
+    copy = cloud.polydata.NewInstance()
+    copy.ShallowCopy(cloud.polydata)
+    array = numpy_to_vtk(values, deep=True)
+    array.SetName(name)
+    copy.GetPointData().AddArray(array)
+    cloud.polydata = copy
+
+
 def _configure_point_scales(surface, cloud, point_scales, point_scale_multiplier, scale_spread):
     """point_scales: one of _POINT_SCALES, the name of a point array of the cloud, or h_i values;
     values are attached to a shallow copy of the cloud, never to the caller's dataset."""
@@ -314,12 +325,7 @@ def _configure_point_scales(surface, cloud, point_scales, point_scale_multiplier
         raise InputError("point_scales must hold one value per cloud point (%d), got the shape %s"
                          % (count, values.shape))
     # Zeros, negatives and NaN are the C++ side's to refuse, naming the point.
-    copy = cloud.polydata.NewInstance()
-    copy.ShallowCopy(cloud.polydata)
-    array = numpy_to_vtk(values, deep=True)
-    array.SetName("Scale")
-    copy.GetPointData().AddArray(array)
-    cloud.polydata = copy
+    _attach_point_array(cloud, values, "Scale")
     surface.SetPointScalesToFromArray()
     surface.SetScaleArrayName("Scale")
 
@@ -347,12 +353,7 @@ def _configure_normals(surface, cloud, normals):
         raise InputError("normals must hold one 3-vector per cloud point (%d, 3), got the shape %s"
                          % (count, values.shape))
     # Zero and NaN normals are the C++ side's to refuse, naming the point.
-    copy = cloud.polydata.NewInstance()
-    copy.ShallowCopy(cloud.polydata)
-    array = numpy_to_vtk(values, deep=True)
-    array.SetName("Normals")
-    copy.GetPointData().AddArray(array)
-    cloud.polydata = copy
+    _attach_point_array(cloud, values, "Normals")
     surface.SetNormalsArrayName("Normals")
 
 
