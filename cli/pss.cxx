@@ -591,7 +591,7 @@ int Mesh(const std::vector<std::string>& args)
     [&]() { mesher->ProjectVerticesOff(); });
   t.Value("procedure", "NAME", "extremal | plane | automatic: how the vertices are projected (default automatic: plane for com with point scales, else extremal)",
     [&](const std::string& v) { mesher->SetProcedure(pss_cli::ToChoice("procedure", v, { "extremal", "plane", "automatic" })); });
-  t.Value("max-distance", "D", "outside the domain: a projection ending farther than D h from the cloud (default 1)",
+  t.Value("max-distance", "D", "outside the domain: a projection ending farther than D h from the cloud (default -1: 0.6 with point scales, else 1)",
     [&](const std::string& v) { mesher->SetMaxDistance(pss_cli::ToDouble("max-distance", v)); });
   t.Value("max-normal-angle", "DEG", "outside the domain: n off the cloud's normal by more (default 30)",
     [&](const std::string& v) { mesher->SetMaxNormalAngle(pss_cli::ToDouble("max-normal-angle", v)); });

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 namespace pss_paper
@@ -214,6 +215,20 @@ vtkSmartPointer<vtkPolyData> Extrema(vtkPolyData* projection, int type)
     }
   }
   return MakePointCloud(points);
+}
+
+vtkSmartPointer<vtkPolyData> DomainAtStarts(vtkPolyData* starts, vtkPolyData* projection)
+{
+  vtkDataArray* label = projection->GetPointData()->GetArray("DomainLabel");
+  if (!label || projection->GetNumberOfPoints() != starts->GetNumberOfPoints())
+  {
+    throw std::runtime_error("the classifier's output has no DomainLabel per start point");
+  }
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(starts);
+  out->GetPointData()->Initialize();
+  out->GetPointData()->AddArray(label);
+  return out;
 }
 
 } // namespace pss_paper

@@ -56,6 +56,10 @@ DeltaStats MeasureDelta(vtkImageData* field, const Scene& scene);
 /// The converged end points of @p projection whose `ExtremumType` is @p type (1 min, 2 max).
 vtkSmartPointer<vtkPolyData> Extrema(vtkPolyData* projection, int type);
 
+/// The start points @p starts with the `DomainLabel` of their projections in @p projection (the
+/// classifier's output 0, one point per start): the domain drawn where it is, at the starts.
+vtkSmartPointer<vtkPolyData> DomainAtStarts(vtkPolyData* starts, vtkPolyData* projection);
+
 } // namespace pss_paper
 
 #endif

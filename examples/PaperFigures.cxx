@@ -27,6 +27,9 @@
  *   minima (blue) and maxima (green) reached from random starts, near-singular points of n, and
  *   the mesher's polylines checked against the same starts' end points (fig09_levin_mesh.vtp,
  *   fig10_integral_mesh.vtp);
+ * - domain_corner_*.vtp, domain_noisy10_*.vtp: for each of the seven definitions, the random
+ *   starts of the corner and of the noisy curve at h = 10 with the DomainLabel of their
+ *   projections (where each definition is defined);
  * - paper_table.csv (also printed): per scene and variant, the fraction of start points that land
  *   on the true curve, the number of spurious surface points, Levin's flip height and the domain
  *   half-width on the line scene;
@@ -551,6 +554,7 @@ int main(int argc, char** argv)
         integralSpurious = p.stats.spurious;
       }
       cornerBreakdown.push_back(BreakDownCorner(corner, v, p.points));
+      Write(DomainAtStarts(cornerStarts, p.points), "domain_corner_" + VariantName(v) + ".vtp");
       const bool figure = std::find(figure6Variants.begin(), figure6Variants.end(), v) != figure6Variants.end();
       if (figure)
       {
@@ -630,6 +634,7 @@ int main(int argc, char** argv)
       r.starts = std::to_string(kWideStarts) + " uniform, box + 3 h";
       r.stats = minima.stats;
       rows.push_back(r);
+      Write(DomainAtStarts(wideStarts, minima.points), "domain_noisy10_" + VariantName(v) + ".vtp");
       Done("noisy curve h = 10: project " + std::to_string(kWideStarts) + " random starts, " + VariantName(v));
       if (v != levin && v != integral)
       {

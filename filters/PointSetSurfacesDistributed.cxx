@@ -82,18 +82,21 @@ bool PrepareDistributedSurface(vtkAlgorithm* algorithm, vtkPointSetSurface* surf
     gathered = nullptr;
     return PrepareSurface(algorithm, surface, cloud, what, false, coordinateOrder);
   }
-  if (pss::needsNormals(static_cast<pss::Variant>(surface->GetVariant())))
-  {
-    // Every rank alike, before anything collective: the gathered cloud carries no point arrays,
-    // so a Normals array would be lost and the normals estimated instead, unlike one process.
-    vtkErrorWithObjectMacro(algorithm, << "APSS and RIMLS are not supported in a distributed run yet (the cloud's "
-                                          "normals do not travel between ranks); run them in a single process");
-    gathered = nullptr;
-    return false;
-  }
   // The whole cloud on every rank makes h, centroid, bounds and every neighbourhood those of the
-  // one-process run by construction, whatever the split.
-  gathered = GatherCloud(algorithm, controller, cloud);
+  // one-process run by construction, whatever the split; with the point arrays the surface reads.
+  // The normals also when the definition does not read them: the mesher orients by them.
+  std::vector<std::string> arrays;
+  const char* normals = surface->GetNormalsArrayName();
+  if (normals && *normals)
+  {
+    arrays.emplace_back(normals);
+  }
+  const char* scales = surface->GetScaleArrayName();
+  if (surface->GetPointScales() == vtkPointSetSurface::POINT_SCALES_FROM_ARRAY && scales && *scales)
+  {
+    arrays.emplace_back(scales);
+  }
+  gathered = GatherCloud(algorithm, controller, cloud, arrays);
   return gathered && PrepareSurface(algorithm, surface, gathered, what, true, coordinateOrder);
 }
 
@@ -111,8 +114,88 @@ GatherLayout LayoutOfAllGather(vtkMultiProcessController* controller, vtkIdType 
   return layout;
 }
 
-vtkSmartPointer<vtkPolyData> GatherCloud(
-  vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud)
+namespace
+{
+
+// Every rank's values of point array @p name (as doubles, ranks in order) into @p whole, when
+// the ranks' points carry it. False (collectively, after an error) when some do and some do not.
+bool GatherPointArray(vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud,
+  const std::string& name, vtkPolyData* whole)
+{
+  const vtkIdType n = cloud ? cloud->GetNumberOfPoints() : 0;
+  vtkDataArray* local = n > 0 ? cloud->GetPointData()->GetArray(name.c_str()) : nullptr;
+  const int components = local && local->GetNumberOfTuples() == n ? local->GetNumberOfComponents() : 0;
+  // A rank without points has no say; the others must agree.
+  const int mine[2] = { n > 0 ? components : -1, n > 0 ? -components : -VTK_INT_MAX };
+  int agreed[2] = { 0, 0 };
+  controller->AllReduce(mine, agreed, 2, vtkCommunicator::MAX_OP);
+  const int most = agreed[0];
+  const int least = -agreed[1];
+  if (most <= 0)
+  {
+    return true; // no rank's points carry it (or no points at all): Prepare reports what is missing
+  }
+  if (least != most)
+  {
+    vtkErrorWithObjectMacro(algorithm, << "the point array \"" << name
+                                       << "\" is on some ranks' pieces of the cloud only (or with other component "
+                                          "counts): every piece needs it");
+    return false;
+  }
+  std::vector<double> values(static_cast<std::size_t>(n) * static_cast<std::size_t>(components));
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    local->GetTuple(i, values.data() + static_cast<std::size_t>(i) * static_cast<std::size_t>(components));
+  }
+  const vtkIdType sendLength = static_cast<vtkIdType>(values.size());
+  GatherLayout layout = LayoutOfAllGather(controller, sendLength);
+  auto all = vtkSmartPointer<vtkDoubleArray>::New();
+  all->SetName(name.c_str());
+  all->SetNumberOfComponents(components);
+  all->SetNumberOfTuples(layout.Total / components);
+  controller->AllGatherV(values.data(), all->GetPointer(0), sendLength, layout.Lengths.data(), layout.Offsets.data());
+  whole->GetPointData()->AddArray(all);
+  return true;
+}
+
+// The field data array @p name of the lowest rank whose cloud has it (at most 16 values), into
+// @p whole.
+void GatherFieldArray(vtkMultiProcessController* controller, vtkPointSet* cloud, const char* name, vtkPolyData* whole)
+{
+  constexpr int most = 16;
+  double mine[most + 2] = {};
+  vtkDataArray* a = cloud ? cloud->GetFieldData()->GetArray(name) : nullptr;
+  if (a && a->GetNumberOfValues() > 0 && a->GetNumberOfValues() <= most)
+  {
+    mine[0] = a->GetNumberOfComponents();
+    mine[1] = static_cast<double>(a->GetNumberOfTuples());
+    for (vtkIdType k = 0; k < a->GetNumberOfValues(); ++k)
+    {
+      mine[2 + k] = a->GetComponent(k / a->GetNumberOfComponents(), static_cast<int>(k % a->GetNumberOfComponents()));
+    }
+  }
+  std::vector<double> all(static_cast<std::size_t>((most + 2) * controller->GetNumberOfProcesses()));
+  controller->AllGather(mine, all.data(), most + 2);
+  for (std::size_t r = 0; r < all.size(); r += most + 2)
+  {
+    if (all[r] > 0.0)
+    {
+      auto copy = vtkSmartPointer<vtkDoubleArray>::New();
+      copy->SetName(name);
+      copy->SetNumberOfComponents(static_cast<int>(all[r]));
+      copy->SetNumberOfTuples(static_cast<vtkIdType>(all[r + 1]));
+      std::copy(all.begin() + static_cast<std::ptrdiff_t>(r + 2),
+        all.begin() + static_cast<std::ptrdiff_t>(r + 2) + copy->GetNumberOfValues(), copy->GetPointer(0));
+      whole->GetFieldData()->AddArray(copy);
+      return;
+    }
+  }
+}
+
+} // namespace
+
+vtkSmartPointer<vtkPolyData> GatherCloud(vtkAlgorithm* algorithm, vtkMultiProcessController* controller,
+  vtkPointSet* cloud, const std::vector<std::string>& arrays)
 {
   const vtkIdType n = cloud ? cloud->GetNumberOfPoints() : 0;
   std::vector<double> local(static_cast<std::size_t>(3 * n));
@@ -140,6 +223,17 @@ vtkSmartPointer<vtkPolyData> GatherCloud(
   points->SetData(coordinates);
   auto whole = vtkSmartPointer<vtkPolyData>::New();
   whole->SetPoints(points);
+  for (const std::string& name : arrays)
+  {
+    if (!GatherPointArray(algorithm, controller, cloud, name, whole))
+    {
+      return nullptr;
+    }
+  }
+  for (const char* name : { "Viewpoint", "GridDimensions" })
+  {
+    GatherFieldArray(controller, cloud, name, whole);
+  }
   return whole;
 }
 
@@ -180,20 +274,27 @@ void ChainedCentroid(vtkMultiProcessController* controller, const GhostRun& run,
 
 // The automatic h of the one-process run: the finite points gathered on rank 0 in rank order
 // (the order one process indexes them in), its index and estimateScale there, broadcast. Rank 0
-// holds the whole cloud meanwhile. Returns 0 on every rank when the estimate is 0, -1 when the
-// cloud is too large for one message.
-double RootAutomaticScale(vtkMultiProcessController* controller, vtkPointSetSurface* surface, const GhostRun& run)
+// holds the whole cloud meanwhile. h is 0 on every rank when the estimate is 0, -1 when the
+// cloud is too large for one message. With PointScales Automatic, spread is the spread of the
+// scales per point one process would estimate (0 otherwise): what decides whether it takes them.
+struct RootScale
+{
+  double h = 0.0;
+  double spread = 0.0;
+};
+
+RootScale RootAutomaticScale(vtkMultiProcessController* controller, vtkPointSetSurface* surface, const GhostRun& run)
 {
   const vtkIdType length = static_cast<vtkIdType>(run.Own.size());
   GatherLayout layout = LayoutOfAllGather(controller, length);
   if (!layout.FitsOneMessage())
   {
-    return -1.0;
+    return { -1.0, 0.0 };
   }
   const bool root = controller->GetLocalProcessId() == 0;
   std::vector<double> all(root ? static_cast<std::size_t>(layout.Total) : 0);
   controller->GatherV(run.Own.data(), all.data(), length, layout.Lengths.data(), layout.Offsets.data(), 0);
-  double h = 0.0;
+  double result[2] = { 0.0, 0.0 }; // h, spread
   if (root)
   {
     std::vector<pss::Vec3> points(all.size() / 3);
@@ -204,10 +305,16 @@ double RootAutomaticScale(vtkMultiProcessController* controller, vtkPointSetSurf
     all = std::vector<double>();
     const int threads = CoreThreads();
     const pss::PointIndex index(std::move(points), run.Dimension, threads);
-    h = pss::estimateScale(index, surface->GetScaleNeighbors(), surface->GetScaleMultiplier(), threads);
+    result[0] = pss::estimateScale(index, surface->GetScaleNeighbors(), surface->GetScaleMultiplier(), threads);
+    const int k = surface->GetScaleNeighbors();
+    if (surface->GetPointScales() == vtkPointSetSurface::POINT_SCALES_AUTOMATIC && index.size() > static_cast<std::size_t>(k))
+    {
+      result[1] = pss::scaleSpread(pss::estimateLocalScales(
+        index, k, surface->GetScaleMultiplier() * surface->GetPointScaleMultiplier(), 2, threads));
+    }
   }
-  controller->Broadcast(&h, 1, 0);
-  return h;
+  controller->Broadcast(result, 2, 0);
+  return { result[0], result[1] };
 }
 
 } // namespace
@@ -262,7 +369,8 @@ bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMult
   run.H = surface->GetScaleFactor();
   if (surface->GetAutomaticScale() && (run.Dimension == 2 || run.Dimension == 3))
   {
-    run.H = RootAutomaticScale(controller, surface, run);
+    const RootScale scale = RootAutomaticScale(controller, surface, run);
+    run.H = scale.h;
     if (!(run.H > 0.0))
     {
       if (run.H < 0.0)
@@ -280,6 +388,27 @@ bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMult
                                            << " distinct positions around most points (duplicates?); set "
                                               "ScaleFactor and turn AutomaticScale off");
       }
+      return false;
+    }
+    // Where one process would take a scale per point, one h would be another surface (a depth
+    // frame's mesh in hundreds of pieces): refused alike on every rank, as Estimated is.
+    int sensor = pss_vtk::IsSensorFrame(cloud) ? 1 : 0;
+    int anySensor = 0;
+    controller->AllReduce(&sensor, &anySensor, 1, vtkCommunicator::MAX_OP);
+    const bool spread = scale.spread > surface->GetScaleSpreadThreshold();
+    if (surface->GetPointScales() == vtkPointSetSurface::POINT_SCALES_AUTOMATIC && (anySensor || spread))
+    {
+      std::ostringstream why;
+      if (anySensor)
+        why << "it is a sensor frame: field data GridDimensions or Viewpoint";
+      else
+        why << "its scales spread " << scale.spread << " times, above ScaleSpreadThreshold "
+            << surface->GetScaleSpreadThreshold();
+      vtkErrorWithObjectMacro(algorithm, << "cannot define the surface: one process would take a scale per point here ("
+                                         << why.str()
+                                         << "), which a run with ghost points (GhostMargin > 0) does not support "
+                                            "yet: set GhostMargin 0 (the gathered cloud, which does) or PointScales "
+                                            "Off (one h)");
       return false;
     }
   }

@@ -78,11 +78,16 @@ GatherLayout LayoutOfAllGather(vtkMultiProcessController* controller, vtkIdType 
  * double-precision point set on every rank, ranks in order, each rank's points in their order,
  * NaN/Inf points included (Prepare sets them aside and counts them as in one process). So the
  * surface, its automatic h, centroid and bounds are bitwise those of the one-process run over the
- * pieces concatenated. Returns nullptr on every rank (after an error of @p algorithm) when the
- * cloud has more coordinates than one MPI message holds (2^31 - 1).
+ * pieces concatenated. The point arrays named in @p arrays (the normals APSS and RIMLS read, the
+ * scales of PointScales FromArray) come along, as doubles, where the pieces have them, and so do
+ * the field data a sensor frame carries (Viewpoint, GridDimensions: the lowest rank's that has
+ * them), which decide the automatic scale and orient the estimated normals as in one process.
+ * Returns nullptr on every rank (after an error of @p algorithm) when the cloud has more
+ * coordinates than one MPI message holds (2^31 - 1), or when some ranks' points carry one of
+ * @p arrays and others' do not (or with other component counts).
  */
-vtkSmartPointer<vtkPolyData> GatherCloud(
-  vtkAlgorithm* algorithm, vtkMultiProcessController* controller, vtkPointSet* cloud);
+vtkSmartPointer<vtkPolyData> GatherCloud(vtkAlgorithm* algorithm, vtkMultiProcessController* controller,
+  vtkPointSet* cloud, const std::vector<std::string>& arrays = {});
 
 /**
  * What the ranks of a run with ghost points (GhostMargin > 0) share, from BeginGhostRun(): the

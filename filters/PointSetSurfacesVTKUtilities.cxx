@@ -62,6 +62,26 @@ bool CloudViewpoint(vtkDataObject* cloud, double xyz[3])
   return true;
 }
 
+bool IsSensorFrame(vtkDataObject* cloud)
+{
+  vtkFieldData* field = cloud ? cloud->GetFieldData() : nullptr;
+  if (!field)
+  {
+    return false;
+  }
+  if (field->GetArray("Viewpoint"))
+  {
+    return true;
+  }
+  vtkDataArray* grid = field->GetArray("GridDimensions");
+  if (!grid || grid->GetNumberOfValues() < 2)
+  {
+    return false;
+  }
+  const int components = grid->GetNumberOfComponents();
+  return grid->GetComponent(0, 0) > 1 && grid->GetComponent(1 / components, 1 % components) > 1;
+}
+
 vtkIdType PointAt(vtkPoints* points, const double x[3])
 {
   if (!points || points->GetNumberOfPoints() == 0)

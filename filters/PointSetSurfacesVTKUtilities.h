@@ -46,6 +46,11 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, vtkIdType tuples, int compone
 /// vtkPCDReader and the depth-camera source write it) into @p xyz; false when it has none.
 bool CloudViewpoint(vtkDataObject* cloud, double xyz[3]);
 
+/// Whether @p cloud says it is a depth or LiDAR frame: an organized image (field data
+/// GridDimensions, both sides > 1) or the sensor's position (Viewpoint), as vtkPCDReader and the
+/// depth-camera source write them. The automatic PointScales takes a scale per point for one.
+bool IsSensorFrame(vtkDataObject* cloud);
+
 /// The first of @p points at @p x (within 1e-12 of the points' bounding-box diagonal), or -1.
 vtkIdType PointAt(vtkPoints* points, const double x[3]);
 

@@ -64,27 +64,6 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud)
   return this->Prepare(cloud, false);
 }
 
-namespace
-{
-// A depth or LiDAR frame says so: an organized image (GridDimensions, both sides > 1) or the
-// sensor's position (Viewpoint), as vtkPCDReader and the depth-camera source write them.
-bool IsSensorFrame(vtkPointSet* cloud)
-{
-  vtkFieldData* field = cloud->GetFieldData();
-  if (field->GetArray("Viewpoint"))
-  {
-    return true;
-  }
-  vtkDataArray* grid = field->GetArray("GridDimensions");
-  if (!grid || grid->GetNumberOfValues() < 2)
-  {
-    return false;
-  }
-  const int components = grid->GetNumberOfComponents();
-  return grid->GetComponent(0, 0) > 1 && grid->GetComponent(1 / components, 1 % components) > 1;
-}
-}
-
 bool vtkPointSetSurface::Prepare(vtkPointSet* cloud, bool coordinateOrder)
 {
   vtkMTimeType cloudTime = 0;
@@ -131,7 +110,7 @@ bool vtkPointSetSurface::Prepare(vtkPointSet* cloud, bool coordinateOrder)
       arrayScales[static_cast<std::size_t>(i)] = scales->GetComponent(i, 0);
     }
   }
-  this->SensorFrame = IsSensorFrame(cloud);
+  this->SensorFrame = pss_vtk::IsSensorFrame(cloud);
   std::vector<pss::Vec3> points = pss_vtk::ToVectors(cloud->GetPoints(), threads);
   const int dimension =
     this->Dimension == DIMENSION_AUTO ? pss::detectDimension(points, threads) : this->Dimension;

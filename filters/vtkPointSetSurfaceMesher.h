@@ -17,7 +17,8 @@
  * normals; triangles are counter-clockwise about them), `Stability`, `Energy`, `DomainLabel`,
  * `DistanceToCloud`, `NormalAngle`, `StartAngle`, `StartStability` (the classifier's evidence for
  * the crossing that became the vertex), `Displacement` (from the grid crossing to the vertex),
- * `Iterations`, `StopReason`. Field data: `ScaleFactor`, `Dimension`, `CellSize`, `Band` and the
+ * `Iterations`, `StopReason`. Field data: `ScaleFactor`, `Dimension`, `CellSize`, `Band`,
+ * `MaxDistance` and `MaxBorderOffset` (as applied, automatic values resolved), `Procedure` and the
  * counts `BandCells`, `CellLevels`, `HangingVertices` (adaptive cells), `GridVertices`, `Crossings`, `DroppedVertices`, `MaximumCrossings`,
  * `SeamSimplices`, `FoldedTriangles`, `UndefinedGridVertices` (why parts are missing),
  * `RemovedPieces`, `CoveredPieces`, `ClosedHoles`, `Components`, `BoundaryEdges`,
@@ -128,10 +129,16 @@ public:
   ///@{
   /**
    * Domain criteria, as vtkPointSetSurfaceDomainClassifier's: a vertex whose projection ends
-   * farther than MaxDistance * h from every cloud point, or with n more than MaxNormalAngle
-   * degrees off the cloud's own normal there, is outside the domain. Defaults 1 and 30.
+   * farther than MaxDistance * h (the local h_i with a scale per point) from every cloud point,
+   * or with n more than MaxNormalAngle degrees off the cloud's own normal there, is outside the
+   * domain. MaxNormalAngle defaults to 30. MaxDistance <= 0 (the default,
+   * MAX_DISTANCE_AUTOMATIC) takes 1 with one h and 0.6 with a scale per point: an estimated h_i
+   * is three k-th neighbour distances wide (PointScaleMultiplier, so the weights reach across a
+   * depth frame's layers), about five point spacings, and one h_i would let the mesh cover gaps
+   * of the scan ten spacings across; 0.6 h_i is about three spacings, as 1 h is about two with one h.
    */
-  vtkSetClampMacro(MaxDistance, double, 1e-6, 1e6);
+  static constexpr double MAX_DISTANCE_AUTOMATIC = -1.0;
+  vtkSetClampMacro(MaxDistance, double, MAX_DISTANCE_AUTOMATIC, 1e6);
   vtkGetMacro(MaxDistance, double);
   vtkSetClampMacro(MaxNormalAngle, double, 0.0, 90.0);
   vtkGetMacro(MaxNormalAngle, double);
@@ -152,6 +159,13 @@ public:
   static constexpr double BORDER_OFFSET_AUTOMATIC = -1.0;
   vtkSetClampMacro(MaxBorderOffset, double, BORDER_OFFSET_AUTOMATIC, 100.0);
   vtkGetMacro(MaxBorderOffset, double);
+  ///@}
+
+  ///@{
+  /// The distance and border criteria the last run applied, the automatic values resolved (also
+  /// the output's field data MaxDistance and MaxBorderOffset).
+  vtkGetMacro(UsedMaxDistance, double);
+  vtkGetMacro(UsedMaxBorderOffset, double);
   ///@}
 
   ///@{
@@ -268,7 +282,9 @@ protected:
   bool ProjectVertices = true;
   int Procedure = AUTOMATIC;
   int UsedProcedure = EXTREMAL;
-  double MaxDistance = 1.0;
+  double UsedMaxDistance = 1.0;
+  double UsedMaxBorderOffset = 0.0;
+  double MaxDistance = MAX_DISTANCE_AUTOMATIC;
   double MaxNormalAngle = 30.0;
   double MaxBorderOffset = BORDER_OFFSET_AUTOMATIC;
   double MaxVertexTravel = 2.0;

@@ -512,6 +512,20 @@ ReferenceFreeQuality MeasureWithoutReference(vtkPolyData* mesh, vtkPoints* cloud
       far += local;
     });
     q.farShare = samples.empty() ? 0.0 : static_cast<double>(far.load()) / static_cast<double>(samples.size());
+    // The other side of the far area: scan data the mesh leaves out (its borders trimmed, pieces
+    // removed), which a stricter domain test could trade for less far area.
+    std::vector<Vec3> cloudPoints(index.size());
+    for (std::size_t i = 0; i < cloudPoints.size(); ++i)
+    {
+      cloudPoints[i] = index.point(i);
+    }
+    const std::vector<double> toMesh = DistancesTo(mesh, cloudPoints);
+    std::size_t uncovered = 0;
+    for (std::size_t i = 0; i < toMesh.size(); ++i)
+    {
+      uncovered += toMesh[i] > options.uncoveredDistance * spacing[i] ? 1 : 0;
+    }
+    q.uncoveredShare = toMesh.empty() ? 0.0 : static_cast<double>(uncovered) / static_cast<double>(toMesh.size());
   }
   return q;
 }
@@ -527,7 +541,7 @@ std::string DescribeWithoutReference(const ReferenceFreeQuality& q, double unit,
   s << "cloud " << q.cloudPoints << " points, median local spacing " << q.medianSpacing / unit << " " << unitName << "\n";
   s.precision(1);
   s << "boundary loops " << q.loops.size() << ", small holes " << q.smallHoles << " (" << q.smallHoleEdges
-    << " edges), far area " << 100.0 * q.farShare << "%\n";
+    << " edges), far area " << 100.0 * q.farShare << "%, uncovered points " << 100.0 * q.uncoveredShare << "%\n";
   std::size_t listed = 0;
   for (const HoleLoop& h : q.loops)
   {

@@ -108,6 +108,7 @@ struct ReferenceFreeOptions
   double smallHoleLength = 40.0; ///< a small hole's loop is shorter than this many local spacings
   double holeCentreGap = 2.0;    ///< ... and has a cloud point within this many of its centre
   double farDistance = 3.0;      ///< mesh farther than this many local spacings from every cloud point is far
+  double uncoveredDistance = 2.0; ///< a cloud point farther than this many local spacings from the mesh is uncovered
 };
 
 /// One boundary loop, measured against the cloud.
@@ -135,6 +136,7 @@ struct ReferenceFreeQuality
   std::size_t smallHoles = 0;      ///< loops that are small holes
   std::size_t smallHoleEdges = 0;  ///< their edges
   double farShare = 0.0;           ///< share of the area farther than farDistance local spacings from the cloud
+  double uncoveredShare = 0.0;     ///< share of the cloud points farther than uncoveredDistance spacings from the mesh
 };
 
 /**
@@ -147,7 +149,8 @@ struct ReferenceFreeQuality
  * spacings (the median spacing of the cloud points nearest its vertices) and a cloud point lies
  * within holeCentreGap of those spacings of its centre: the scan has data there, so the hole is
  * the mesher's. The far share samples the area evenly (as the spurious share does) and counts the
- * samples farther than farDistance times the nearest cloud point's spacing from it.
+ * samples farther than farDistance times the nearest cloud point's spacing from it; the uncovered
+ * share counts the cloud points farther than uncoveredDistance of their spacings from the mesh.
  */
 ReferenceFreeQuality MeasureWithoutReference(vtkPolyData* mesh, vtkPoints* cloud, const ReferenceFreeOptions& options);
 

@@ -15,7 +15,8 @@
  *
  * Without a reference surface (a real scan): topology, the boundary loops that are small holes
  * (shorter than 40 local point spacings, with CLOUD points within 2 spacings of their centre) and
- * the far area (mesh farther than 3 local spacings from every CLOUD point): MeasureWithoutReference.
+ * the far area (mesh farther than 3 local spacings from every CLOUD point) and the uncovered points
+ * (CLOUD points farther than 2 local spacings from the mesh): MeasureWithoutReference.
  * CLOUD may also be a .pcd file (its NaN pixels are left out).
  */
 #include "MeshMetrics.h"

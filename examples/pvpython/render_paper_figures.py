@@ -7,7 +7,7 @@ pss-paper-figures wrote. Reads them with stock ParaView readers only (no plugin 
 
 Writes OUTDIR/fig01_02_projection_lines.png, fig05_line_glyphs.png, fig06_corner.png,
 fig07_delta.png, fig09_levin_h10.png, fig10_integral_h10.png, fig03_planes.png, fig04_legend.png and
-fig08_noisy_band.png. Each panel is rendered on its
+fig08_noisy_band.png, and domains_2d.png (the seven definitions' domains on two scenes). Each panel is rendered on its
 own (2D, parallel projection) and the panels are put together with vtkImageAppend, then saved as
 8-bit palette PNGs (small enough for the docs). PSS_KEEP_PANELS=1 keeps the single panels in
 OUTDIR/.panels. Figures 6, 9 and 10 draw the polyline of vtkPointSetSurfaceMesher (fig06_*_mesh.vtp,
@@ -609,6 +609,47 @@ def figure_8():
     compose([[left, right], [cap]], "fig08_noisy_band.png")
 
 
+DEFINITIONS = (("levin", "Levin's MLS"), ("normalized", "normalized MLS"), ("com", "center of mass"),
+               ("integral", "integral (e_I)"), ("delta", "delta"), ("apss", "APSS"), ("rimls", "RIMLS"))
+LABEL_COLORS = ((0, [0.55, 0.85, 0.55]), (1, RED), (2, ORANGE), (3, BLUE))  # DomainLabel 0..3
+
+
+def domains_2d():
+    """Where each of the seven definitions is defined: the random starts of the corner (h = 5) and
+    of the noisy curve at h = 10, coloured by the DomainLabel of their projections."""
+    corner_box = data_bounds(image("fig06_levin_field.vti"))
+    wide_box = data_bounds(image("fig09_levin_field.vti"))
+    ch = 230
+    cw = int(round(ch * (corner_box[1] - corner_box[0]) / (corner_box[3] - corner_box[2])))
+    nw = int(round(ch * (wide_box[1] - wide_box[0]) / (wide_box[3] - wide_box[2])))
+    grid = []
+    for key, name in DEFINITIONS:
+        shares = []
+        row = []
+        for scene, cloud_file, box, width in (("corner", "corner_cloud.vtp", corner_box, cw),
+                                              ("noisy10", "noisy_curve_cloud.vtp", wide_box, nw)):
+            starts = poly("domain_%s_%s.vtp" % (scene, key))
+            total = count_points(starts)
+            v = panel_view(width, ch, box)
+            for label, color in LABEL_COLORS:
+                part = subset(starts, "DomainLabel", "POINTS", label, label)
+                if label == 0:
+                    shares.append(100.0 * count_points(part) / max(total, 1))
+                points(part, v, color, 3, z=0.0)
+            points(poly(cloud_file), v, BLACK, 2)
+            row.append(snap(v, "domain_%s_%s" % (scene, key)))
+        grid.append([caption_panel(cw + nw, 26, "%s: in the domain %.0f%% of the corner's starts, %.0f%% of the noisy "
+                                                "curve's (h = 10)" % (name, shares[0], shares[1]), 14)])
+        grid.append(row)
+    grid.append([caption_panel(cw + nw, 66,
+                               "Random starts coloured by the DomainLabel of their projection (Domain Classifier, "
+                               "default thresholds):\ngreen InDomain, red Spurious, orange Undefined, blue NotConverged; "
+                               "black: the cloud.\nLeft: the 45-degree corner, h = 5 (Figure 6). Right: the noisy curve, "
+                               "h = 10 (Figures 9, 10).\nAPSS and RIMLS fit normals estimated from the cloud and oriented "
+                               "by propagation.", 12)])
+    compose(grid, "domains_2d.png", 64)
+
+
 def main():
     rows = table()
     checked = checks()
@@ -621,6 +662,7 @@ def main():
     figure_3()
     figure_4()
     figure_8()
+    domains_2d()
     if not os.environ.get("PSS_KEEP_PANELS"):
         shutil.rmtree(PANELS, ignore_errors=True)
 

@@ -292,7 +292,7 @@ def _vector(what, value):
 def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1.0, point_scales="automatic",
          point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5,
          min_stability=1e-5, normals=None, cell=1.0, band=1.0, adaptive_cells=True, project_vertices=True, procedure="automatic",
-         max_distance=1.0,
+         max_distance=-1.0,
          max_normal_angle=30.0, max_border_offset=-1.0, max_vertex_travel=2.0, max_seam_angle=80.0, max_fold_angle=60.0,
          max_hole_edges=100, min_piece_area=10.0, covered_piece_area=10.0, max_band_cells=1 << 24, threads=0, progress=None,
          nonfinite="raise", as_polydata=False):

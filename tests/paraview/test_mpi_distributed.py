@@ -17,6 +17,9 @@ order, are the one-process output (points, point and cell arrays bitwise); for t
 ranks' triangles, in rank order and mapped through GlobalPointIds, are the one-process triangles,
 and every vertex and its arrays are bitwise those of the one-process mesh. Cases:
   rank0     the whole cloud in one piece: read by rank 0 only
+  normals   APSS on the pieces' own Normals array (gathered with the points; the mesher orients by it)
+  frame     every piece with the field data Viewpoint: a sensor frame, so the automatic scale takes
+            one per point (asserted on every rank) as one process does
   tiled     the cloud in N slabs along x, separate start points in N-1 pieces (one rank has none)
             with NaN and Inf start points and NaN/Inf cloud points
   emptyrank the cloud in N-1 slabs: one rank has no cloud point and no start point
@@ -78,8 +81,10 @@ ERRORS = {"empty": "the point cloud is empty", "zeroh": "invalid surface paramet
           "ghost-empty": "the point cloud is empty", "ghost-zeroh": "invalid surface parameters"}
 
 
-def write_pieces(directory, name, xyz, piece_of, pieces):
-    """xyz as a .pvtp of `pieces` pieces (point i in piece piece_of[i]), with a StartId array."""
+def write_pieces(directory, name, xyz, piece_of, pieces, normals=None, viewpoint=None):
+    """xyz as a .pvtp of `pieces` pieces (point i in piece piece_of[i]), with a StartId array, and
+    `normals` as the point array Normals and `viewpoint` as every piece's field data Viewpoint when
+    given."""
     sources = []
     for p in range(pieces):
         sel = np.nonzero(piece_of == p)[0]
@@ -90,6 +95,14 @@ def write_pieces(directory, name, xyz, piece_of, pieces):
         ids = numpy_to_vtk(sel.astype(np.int64), deep=1)
         ids.SetName("StartId")
         poly.GetPointData().AddArray(ids)
+        if normals is not None:
+            n = numpy_to_vtk(np.ascontiguousarray(normals[sel]), deep=1)
+            n.SetName("Normals")
+            poly.GetPointData().SetNormals(n)
+        if viewpoint is not None:
+            v = numpy_to_vtk(np.asarray(viewpoint, dtype=np.float64), deep=1)
+            v.SetName("Viewpoint")
+            poly.GetFieldData().AddArray(v)
         writer = vtkXMLPolyDataWriter()
         writer.SetInputData(poly)
         writer.SetFileName(os.path.join(directory, "%s_%d.vtp" % (name, p)))
@@ -98,7 +111,9 @@ def write_pieces(directory, name, xyz, piece_of, pieces):
     with open(os.path.join(directory, name + ".pvtp"), "w") as f:
         f.write('<?xml version="1.0"?>\n<VTKFile type="PPolyData" version="1.0" byte_order="LittleEndian" '
                 'header_type="UInt64">\n  <PPolyData GhostLevel="0">\n'
-                '    <PPointData><PDataArray type="Int64" Name="StartId"/></PPointData>\n'
+                '    <PPointData><PDataArray type="Int64" Name="StartId"/>'
+                + ('<PDataArray type="Float64" Name="Normals" NumberOfComponents="3"/>' if normals is not None else "")
+                + '</PPointData>\n'
                 '    <PPoints><PDataArray type="Float64" NumberOfComponents="3"/></PPoints>\n'
                 + "\n".join(sources) + "\n  </PPolyData>\n</VTKFile>\n")
     return name + ".pvtp"
@@ -148,6 +163,13 @@ def make_case(directory):
         case["starts"] = write_pieces(directory, "starts", starts, starts_of, args.np)
         case["skipped_cloud"] = int(len(bad))
         case["skipped_starts"] = int(len(tail))
+    elif args.case == "normals":  # APSS on the cloud's own Normals array (gathered with the points)
+        case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np,
+                                     normals=xyz / np.linalg.norm(xyz, axis=1)[:, None])
+        case["surface"] = {"Variant": "APSS (Algebraic Spheres)"}
+    elif args.case == "frame":  # a Viewpoint: a sensor frame, so a scale per point, as in one process
+        case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np, viewpoint=[0.0, 0.0, 4.0])
+        case["viewpoint"] = True
     elif args.case == "badpiece":
         case["cloud"] = write_pieces(directory, "cloud", xyz, slabs(xyz, args.np), args.np)
         with open(os.path.join(directory, "cloud_1.vtp"), "w") as f:
@@ -357,6 +379,9 @@ def compare(directory, name, h):
         ph = scale.GetValue(0)
         if ph != h:
             problems.append("%s: rank %d used h = %r, one process %r" % (name, r, ph, h))
+        per_point = piece.GetFieldData().GetArray("PointScales")
+        if args.case == "frame" and (per_point is None or per_point.GetValue(0) != 1):
+            problems.append("%s: rank %d took one h for a sensor frame (its Viewpoint was lost)" % (name, r))
     want = arrays_of(serial)
     parts = [arrays_of(p) for p in pieces if p.GetNumberOfPoints() > 0]
     got = {key: np.concatenate([p[key] for p in parts]) for key in parts[0]}

@@ -1,8 +1,10 @@
 """Run by `mpiexec -np 2 pvbatch --symmetric` (ctest ParaView.Mpi.RefusedInsteadOfWrong): a run with
 more than one process must refuse what does not run distributed (the field sampler with
 OrientationMode Propagate and the projection with PropagateNormals, spanning trees over every
-sample or end point; APSS and RIMLS, whose cloud normals do not travel between ranks, gathered or
-with ghost points: an error and an empty output)
+sample or end point; APSS and RIMLS with ghost points, whose cloud normals do not travel with
+them; a sensor frame with ghost points, where one process takes a scale per point
+that the ghost margins do not follow yet, and one h would be another surface: an error and an
+empty output)
 instead of computing on each rank's piece alone, which differs from the one-process answer near
 every piece's border without saying so. (Every filter runs distributed otherwise:
 test_mpi_distributed.py.)
@@ -33,13 +35,15 @@ cloud.UpdatePipeline()
 # holds a complete cloud, and a filter there could compute the right answer; it must refuse anyway.
 if rank == 0 and cloud.GetDataInformation().GetNumberOfPoints() == 0:
     sys.exit("the cloud source gave no points on rank 0")
+# A small depth frame (field data GridDimensions and Viewpoint): one process takes a scale per point.
+frame = PointSetSurfaceCloudSource(Scene="Depth Camera", ImageWidth=64, ImageHeight=48)
 refused = 0
 for name, proxy in (("sampler", PointSetSurfaceFieldSampler(Input=cloud, GenerateSamplingGrid=1,
                                                             OrientationMode="Propagate")),
                     ("projection", PointSetSurfaceProjection(Input=cloud, PropagateNormals=1)),
-                    ("apss", PointSetSurfaceProjection(Input=cloud, Variant="APSS (Algebraic Spheres)")),
                     ("rimls ghosts", PointSetSurfaceProjection(Input=cloud, Variant="RIMLS (Robust Implicit MLS)",
-                                                               GhostMargin=3.0))):
+                                                               GhostMargin=3.0)),
+                    ("frame ghosts", PointSetSurfaceProjection(Input=frame, GhostMargin=3.0))):
     proxy.UpdatePipeline()
     points = proxy.GetDataInformation().GetNumberOfPoints()
     if points != 0:
@@ -49,4 +53,11 @@ for name, proxy in (("sampler", PointSetSurfaceFieldSampler(Input=cloud, Generat
         print("ok   %-12s refused in a %d-process run" % (name, ranks), flush=True)
 if refused != 4:
     sys.exit("only %d of 4 filters checked" % refused)
+# The frame itself is fine: with the gathered cloud (no ghost points) it is projected.
+gathered = PointSetSurfaceProjection(Input=frame)
+gathered.UpdatePipeline()
+if rank == 0:
+    if gathered.GetDataInformation().GetNumberOfPoints() == 0:
+        sys.exit("the frame with the gathered cloud gave no points")
+    print("ok   the frame runs with the gathered cloud", flush=True)
 # Success ends the script normally: pvbatch then finalizes MPI on every rank (sys.exit would not).

@@ -210,7 +210,8 @@ SAMPLER_ARRAYS = ["Normal", "Energy", "Delta", "ImplicitG", "Stability", "Extrem
 LINE_ARRAYS = ["Converged", "StopReason", "StartPointId"]
 MESH_ARRAYS = ["Normals", "Stability", "Energy", "DomainLabel", "DistanceToCloud", "NormalAngle", "StartAngle",
                "StartStability", "Displacement", "Iterations", "StopReason"]
-MESH_FIELDS = ["ScaleFactor", "Dimension", "PointScales", "CellSize", "Band", "Procedure", "BandCells", "CellLevels", "HangingVertices",
+MESH_FIELDS = ["ScaleFactor", "Dimension", "PointScales", "CellSize", "Band", "MaxDistance", "MaxBorderOffset",
+               "Procedure", "BandCells", "CellLevels", "HangingVertices",
                "GridVertices", "Crossings",
                "DroppedVertices", "MaximumCrossings", "SeamSimplices", "FoldedTriangles", "RemovedPieces", "CoveredPieces", "ClosedHoles",
                "UndefinedGridVertices", "Components", "BoundaryEdges", "NonManifoldEdges", "EulerCharacteristic"]

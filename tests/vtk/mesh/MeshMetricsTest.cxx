@@ -5,7 +5,8 @@
  * with a small hole cut where the scan has data (one small hole), a big hole (none), a small hole
  * where the scan has no data either (none), two separate squares (two pieces), a mesh lifted far
  * above its cloud (all of it far) and a mesh reaching past the edge of its cloud (the part beyond
- * three spacings far).
+ * three spacings far); the cloud points a big hole leaves farther than two spacings from the mesh
+ * are uncovered.
  */
 #include "MeshMetrics.h"
 
@@ -117,6 +118,7 @@ TEST(MeshMetricsWithoutReference, WholeGridIsClean)
   EXPECT_FALSE(q.loops[0].small) << "120 spacings around";
   EXPECT_EQ(q.smallHoles, 0u);
   EXPECT_EQ(q.farShare, 0.0);
+  EXPECT_EQ(q.uncoveredShare, 0.0);
 }
 
 // A 2 x 2 cell hole (8 spacings around) where every cloud point is still there: one small hole.
@@ -140,6 +142,7 @@ TEST(MeshMetricsWithoutReference, SmallHoleWhereTheScanHasData)
   EXPECT_NEAR(hole.centre[1], 15.0, 1e-12);
   EXPECT_NEAR(hole.cloudGap, 0.0, 1e-12) << "the grid point (15, 15) is in the cloud";
   EXPECT_EQ(q.farShare, 0.0) << "the hole removes area, it adds none";
+  EXPECT_EQ(q.uncoveredShare, 0.0) << "the hole's middle point is one spacing from its border";
 }
 
 // A 12 x 12 cell hole is 48 spacings around: past the small-hole length, not counted.
@@ -152,6 +155,9 @@ TEST(MeshMetricsWithoutReference, BigHoleIsNotSmall)
   ASSERT_EQ(q.loops.size(), 2u);
   EXPECT_EQ(q.loops[1].edges, 48u);
   EXPECT_EQ(q.smallHoles, 0u);
+  // The cloud points at least 3 from the hole's border (7 x 7 of them) are farther than 2
+  // spacings (2.05) from the mesh; those 2 from it are not.
+  EXPECT_DOUBLE_EQ(q.uncoveredShare, 49.0 / (31.0 * 31.0));
   // Just below the length limit it is small again: 9 x 9 cells, 36 spacings around.
   vtkNew<vtkPoints> points9;
   vtkNew<vtkCellArray> triangles9;
