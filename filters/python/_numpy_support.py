@@ -167,7 +167,8 @@ def _points_of(dataset):
 
 
 def _points_only(dataset):
-    """The points and point data of dataset as a vtkPolyData without cells."""
+    """The points, point data and field data of dataset as a vtkPolyData without cells (the field
+    data say whether it is a sensor frame, and where the sensor was: a PCD file's Viewpoint)."""
     poly = vtkPolyData()
     points = vtkPoints()
     if dataset.GetNumberOfPoints():
@@ -177,6 +178,7 @@ def _points_only(dataset):
             points.SetData(numpy_to_vtk(np.array([dataset.GetPoint(i) for i in range(dataset.GetNumberOfPoints())])))
     poly.SetPoints(points)
     poly.GetPointData().ShallowCopy(dataset.GetPointData())
+    poly.GetFieldData().ShallowCopy(dataset.GetFieldData())
     return poly
 
 

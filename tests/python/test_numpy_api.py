@@ -166,6 +166,33 @@ class ProjectTest(unittest.TestCase):
         self.assertTrue(named.info["point_scales"])
         self.assertEqual(named.info["h"], 2.5)
 
+    def test_a_sensor_frame_read_from_a_file_keeps_its_viewpoint(self):
+        # An even sphere takes one h; with the field data Viewpoint that a PCD frame carries it is
+        # a sensor frame and takes a scale per point, also when given by its path.
+        from vtkmodules.util.numpy_support import numpy_to_vtk
+        from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
+        from vtkmodules.vtkCommonDataModel import vtkPolyData
+        from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+
+        points = sphere(800)
+        poly = vtkPolyData()
+        vtk_points = vtkPoints()
+        vtk_points.SetData(numpy_to_vtk(points, deep=True))
+        poly.SetPoints(vtk_points)
+        self.assertFalse(pss.project(points).info["point_scales"])
+        viewpoint = vtkDoubleArray()
+        viewpoint.SetName("Viewpoint")
+        for value in (0.0, 0.0, 5.0):
+            viewpoint.InsertNextValue(value)
+        poly.GetFieldData().AddArray(viewpoint)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "frame.vtp")
+            writer = vtkXMLPolyDataWriter()
+            writer.SetFileName(path)
+            writer.SetInputData(poly)
+            writer.Write()
+            self.assertTrue(pss.project(path).info["point_scales"])
+
     def test_circle_in_two_columns(self):
         c = circle(200)
         r = pss.project(c, 1.1 * c)
