@@ -309,8 +309,7 @@ RootScale RootAutomaticScale(vtkMultiProcessController* controller, vtkPointSetS
     const int k = surface->GetScaleNeighbors();
     if (surface->GetPointScales() == vtkPointSetSurface::POINT_SCALES_AUTOMATIC && index.size() > static_cast<std::size_t>(k))
     {
-      result[1] = pss::scaleSpread(pss::estimateLocalScales(
-        index, k, surface->GetScaleMultiplier() * surface->GetPointScaleMultiplier(), 2, threads));
+      result[1] = pss::scaleSpread(surface->EstimatePointScales(index, threads));
     }
   }
   controller->Broadcast(result, 2, 0);
@@ -395,8 +394,8 @@ bool BeginGhostRun(vtkAlgorithm* algorithm, vtkPointSetSurface* surface, vtkMult
     int sensor = pss_vtk::IsSensorFrame(cloud) ? 1 : 0;
     int anySensor = 0;
     controller->AllReduce(&sensor, &anySensor, 1, vtkCommunicator::MAX_OP);
-    const bool spread = scale.spread > surface->GetScaleSpreadThreshold();
-    if (surface->GetPointScales() == vtkPointSetSurface::POINT_SCALES_AUTOMATIC && (anySensor || spread))
+    if (surface->GetPointScales() == vtkPointSetSurface::POINT_SCALES_AUTOMATIC &&
+      surface->AutomaticTakesPointScales(anySensor != 0, scale.spread))
     {
       std::ostringstream why;
       if (anySensor)

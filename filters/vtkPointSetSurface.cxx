@@ -224,6 +224,16 @@ pss::SurfaceParameters vtkPointSetSurface::Parameters(double h) const
   return params;
 }
 
+std::vector<double> vtkPointSetSurface::EstimatePointScales(const pss::PointIndex& index, int threads) const
+{
+  return pss::estimateLocalScales(index, this->ScaleNeighbors, this->ScaleMultiplier * this->PointScaleMultiplier, 2, threads);
+}
+
+bool vtkPointSetSurface::AutomaticTakesPointScales(bool sensorFrame, double spread) const
+{
+  return sensorFrame || spread > this->ScaleSpreadThreshold;
+}
+
 double vtkPointSetSurface::ChooseScales(pss::PointIndex& index, const std::vector<double>& arrayScales)
 {
   const int threads = pss_vtk::CoreThreads();
@@ -234,11 +244,10 @@ double vtkPointSetSurface::ChooseScales(pss::PointIndex& index, const std::vecto
   }
   else if (this->PointScales != POINT_SCALES_OFF && index.size() > static_cast<std::size_t>(this->ScaleNeighbors))
   {
-    scales = pss::estimateLocalScales(
-      index, this->ScaleNeighbors, this->ScaleMultiplier * this->PointScaleMultiplier, 2, threads);
+    scales = this->EstimatePointScales(index, threads);
   }
   this->ScaleSpread = scales.empty() ? 0.0 : pss::scaleSpread(scales);
-  if (this->PointScales == POINT_SCALES_AUTOMATIC && !this->SensorFrame && !(this->ScaleSpread > this->ScaleSpreadThreshold))
+  if (this->PointScales == POINT_SCALES_AUTOMATIC && !this->AutomaticTakesPointScales(this->SensorFrame, this->ScaleSpread))
   {
     scales.clear(); // even density: one h, exactly as with POINT_SCALES_OFF
   }

@@ -291,6 +291,17 @@ public:
   /// The spread (90th over 10th percentile) of the per-point scales POINT_SCALES_AUTOMATIC measured, or
   /// of the array's or the data's scales with a scale per point; 0 when not measured.
   double GetScaleSpread() const { return this->ScaleSpread; }
+  ///@{
+  /**
+   * The rule Prepare() follows, for a caller that holds the cloud's index itself (a distributed
+   * run's rank 0): the scales per point PointScales Estimated and Automatic estimate on @p index
+   * (index order), and whether Automatic takes them, for a sensor frame (field data GridDimensions
+   * or Viewpoint) or scales whose spread exceeds ScaleSpreadThreshold.
+   */
+  std::vector<double> EstimatePointScales(const pss::PointIndex& index, int threads) const;
+  bool AutomaticTakesPointScales(bool sensorFrame, double spread) const;
+  ///@}
+
   /// 2 or 3 after a successful Prepare().
   int GetEffectiveDimension() const { return this->EffectiveDimension; }
   /// Points of the last prepared cloud left out for NaN or infinite coordinates.

@@ -28,6 +28,29 @@ def sphere(n, noise=0.0, seed=1):
     return p * (1.0 + noise * rng.normal(size=(n, 1)))
 
 
+def point_polydata(points):
+    """A vtkPolyData of the (N, 3) points, without cells."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkPolyData
+
+    poly = vtkPolyData()
+    vtk_points = vtkPoints()
+    vtk_points.SetData(numpy_to_vtk(points, deep=True))
+    poly.SetPoints(vtk_points)
+    return poly
+
+
+def write_vtp(test, poly, path):
+    """Writes poly to path with VTK's XML writer, asserting that it succeeded."""
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+
+    writer = vtkXMLPolyDataWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(poly)
+    test.assertEqual(writer.Write(), 1)
+
+
 def circle(n):
     t = np.linspace(0.0, 2.0 * np.pi, n, endpoint=False)
     return np.column_stack([np.cos(t), np.sin(t)])
@@ -169,16 +192,10 @@ class ProjectTest(unittest.TestCase):
     def test_a_sensor_frame_read_from_a_file_keeps_its_viewpoint(self):
         # An even sphere takes one h; with the field data Viewpoint that a PCD frame carries it is
         # a sensor frame and takes a scale per point, also when given by its path.
-        from vtkmodules.util.numpy_support import numpy_to_vtk
-        from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkPoints
-        from vtkmodules.vtkCommonDataModel import vtkPolyData
-        from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+        from vtkmodules.vtkCommonCore import vtkDoubleArray
 
         points = sphere(800)
-        poly = vtkPolyData()
-        vtk_points = vtkPoints()
-        vtk_points.SetData(numpy_to_vtk(points, deep=True))
-        poly.SetPoints(vtk_points)
+        poly = point_polydata(points)
         self.assertFalse(pss.project(points).info["point_scales"])
         viewpoint = vtkDoubleArray()
         viewpoint.SetName("Viewpoint")
@@ -187,10 +204,7 @@ class ProjectTest(unittest.TestCase):
         poly.GetFieldData().AddArray(viewpoint)
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "frame.vtp")
-            writer = vtkXMLPolyDataWriter()
-            writer.SetFileName(path)
-            writer.SetInputData(poly)
-            writer.Write()
+            write_vtp(self, poly, path)
             self.assertTrue(pss.project(path).info["point_scales"])
 
     def test_circle_in_two_columns(self):
@@ -267,27 +281,18 @@ class SampleTest(unittest.TestCase):
 class ReadTest(unittest.TestCase):
     def test_vtp_written_by_vtk_round_trips(self):
         from vtkmodules.util.numpy_support import numpy_to_vtk
-        from vtkmodules.vtkCommonCore import vtkPoints
-        from vtkmodules.vtkCommonDataModel import vtkPolyData
-        from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
         points = sphere(500, noise=0.01)
         weight = np.linspace(0.0, 1.0, 500)
         label = np.arange(500, dtype=np.int32) % 7
-        poly = vtkPolyData()
-        vtk_points = vtkPoints()
-        vtk_points.SetData(numpy_to_vtk(points, deep=True))
-        poly.SetPoints(vtk_points)
+        poly = point_polydata(points)
         for name, values in (("Weight", weight), ("Label", label)):
             array = numpy_to_vtk(values, deep=True)
             array.SetName(name)
             poly.GetPointData().AddArray(array)
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "cloud.vtp")
-            writer = vtkXMLPolyDataWriter()
-            writer.SetFileName(path)
-            writer.SetInputData(poly)
-            self.assertEqual(writer.Write(), 1)
+            write_vtp(self, poly, path)
             r = pss.read(path)
             self.assertTrue(np.array_equal(r.points, points))
             self.assertTrue(np.array_equal(r.Weight, weight))
@@ -315,14 +320,7 @@ class ReadTest(unittest.TestCase):
         if not (hasattr(pss, "vtkPCDReader") and hasattr(pss, "vtkPCDWriter")):
             self.skipTest("this build has no vtkPCDReader/vtkPCDWriter")
         points = sphere(200)
-        from vtkmodules.util.numpy_support import numpy_to_vtk
-        from vtkmodules.vtkCommonCore import vtkPoints
-        from vtkmodules.vtkCommonDataModel import vtkPolyData
-
-        poly = vtkPolyData()
-        vtk_points = vtkPoints()
-        vtk_points.SetData(numpy_to_vtk(points, deep=True))
-        poly.SetPoints(vtk_points)
+        poly = point_polydata(points)
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "cloud.pcd")
             writer = pss.vtkPCDWriter()
