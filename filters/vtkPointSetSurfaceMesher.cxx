@@ -138,6 +138,8 @@ void AddStatistics(const pss::MeshStatistics& st, vtkFieldData* fd)
     { "RemovedPieces", static_cast<long long>(st.removedPieces) },
     { "CoveredPieces", static_cast<long long>(st.coveredPieces) },
     { "ClosedHoles", static_cast<long long>(st.closedHoles) },
+    { "DanglingTriangles", static_cast<long long>(st.danglingTriangles) },
+    { "TrimmedTriangles", static_cast<long long>(st.trimmedSimplices) },
     { "UndefinedGridVertices", static_cast<long long>(st.undefinedVertices) },
     { "Components", static_cast<long long>(st.components) },
     { "BoundaryEdges", static_cast<long long>(st.boundaryEdges) },
@@ -274,8 +276,10 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.domain.maxBorderOffset = this->MaxBorderOffset != BORDER_OFFSET_AUTOMATIC ? std::max(0.0, this->MaxBorderOffset)
     : pointScales                                                                    ? 0.6
                                                                                      : 0.0;
+  options.trimDistance = this->TrimDistance;
   this->UsedMaxDistance = options.domain.maxDistance;
   this->UsedMaxBorderOffset = options.domain.maxBorderOffset;
+  this->UsedTrimDistance = options.trimDistance;
   // In a distributed run every rank builds the same band; each computes its block of the corners,
   // of the crossings and of the holes' centres, and the blocks are exchanged after each stage.
   bool tooLarge = false;
@@ -285,7 +289,13 @@ int vtkPointSetSurfaceMesher::RequestData(
   bool failed = false;
   try
   {
-    if (run.HasGhosts())
+    if (run.HasGhosts() && options.trimDistance > 0.0)
+    {
+      vtkErrorMacro("TrimDistance needs every cloud point's neighbours, which a distributed run with ghost points "
+                    "does not have: set GhostMargin to 0 (the gathered cloud) or TrimDistance to 0");
+      failed = true;
+    }
+    else if (run.HasGhosts())
     {
       mesh = this->MeshWithGhostPoints(run, options, split, t, tooLarge, failed);
     }
@@ -328,7 +338,8 @@ int vtkPointSetSurfaceMesher::RequestData(
   run.AttachGhostFieldData(output);
   for (const auto& entry : { std::make_pair("CellSize", this->CellSize), std::make_pair("Band", this->Band),
          std::make_pair("MaxDistance", this->UsedMaxDistance),
-         std::make_pair("MaxBorderOffset", this->UsedMaxBorderOffset) })
+         std::make_pair("MaxBorderOffset", this->UsedMaxBorderOffset),
+         std::make_pair("TrimDistance", this->UsedTrimDistance) })
   {
     auto a = pss_vtk::NewArray<vtkDoubleArray>(entry.first, 1, 1);
     a->SetValue(0, entry.second);
@@ -428,6 +439,7 @@ void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxHoleEdges: " << this->MaxHoleEdges << "\n";
   os << indent << "MinPieceArea: " << this->MinPieceArea << "\n";
   os << indent << "MaxBorderOffset: " << this->MaxBorderOffset << " (used " << this->UsedMaxBorderOffset << ")\n";
+  os << indent << "TrimDistance: " << this->TrimDistance << " (used " << this->UsedTrimDistance << ")\n";
   os << indent << "CoveredPieceArea: " << this->CoveredPieceArea << "\n";
   os << indent << "MaximumNumberOfBandCells: " << this->MaximumNumberOfBandCells << "\n";
   os << indent << "GhostMargin: " << this->GhostMargin << "\n";

@@ -225,44 +225,6 @@ double Median(std::vector<double>& v)
   return *middle;
 }
 
-// Each indexed point's local spacing, from the density around it: its distance d_k to the k-th
-// nearest other point (k = @p neighbours) as the side of the square each sample covers,
-// d_k sqrt(pi / k) (a square grid of spacing s gives 1.02 s at k = 12), then the median of that
-// over the point and its k nearest. From the density, not from the nearest neighbour, because a
-// depth frame's points lie in stripes (the sensor quantizes depth): the nearest neighbour is in
-// the same stripe, and the stripes are several such distances apart at the far end.
-std::vector<double> LocalSpacings(const pss::PointIndex& index, std::size_t neighbours)
-{
-  const std::size_t n = index.size();
-  const std::size_t k = std::min(n, neighbours + 1); // the point itself comes first
-  std::vector<double> raw(n, 0.0);
-  std::vector<double> spacing(n, 0.0);
-  const double side = std::sqrt(M_PI / static_cast<double>(std::max<std::size_t>(1, k - 1)));
-  vtkSMPTools::For(0, static_cast<vtkIdType>(n), [&](vtkIdType begin, vtkIdType end) {
-    std::vector<std::pair<std::uint32_t, double>> near;
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      index.kNearest(index.point(static_cast<std::size_t>(i)), k, near);
-      raw[static_cast<std::size_t>(i)] = near.empty() ? 0.0 : side * std::sqrt(near.back().second);
-    }
-  });
-  vtkSMPTools::For(0, static_cast<vtkIdType>(n), [&](vtkIdType begin, vtkIdType end) {
-    std::vector<std::pair<std::uint32_t, double>> near;
-    std::vector<double> values;
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      index.kNearest(index.point(static_cast<std::size_t>(i)), k, near);
-      values.clear();
-      for (const auto& entry : near)
-      {
-        values.push_back(raw[entry.first]);
-      }
-      spacing[static_cast<std::size_t>(i)] = Median(values);
-    }
-  });
-  return spacing;
-}
-
 } // namespace
 
 BoundaryReport ClassifyBoundary(
@@ -457,7 +419,7 @@ ReferenceFreeQuality MeasureWithoutReference(vtkPolyData* mesh, vtkPoints* cloud
   }
   const pss::PointIndex index(std::move(points), 3); // leaves non-finite points out
   q.cloudPoints = index.size();
-  const std::vector<double> spacing = LocalSpacings(index, std::max<std::size_t>(1, options.spacingNeighbours));
+  const std::vector<double> spacing = pss::estimateLocalSpacings(index, std::max<std::size_t>(1, options.spacingNeighbours), 0);
   {
     std::vector<double> copy = spacing;
     q.medianSpacing = Median(copy);

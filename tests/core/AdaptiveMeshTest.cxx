@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <random>
 #include <stdexcept>
@@ -248,6 +249,92 @@ TEST(AdaptiveMesh, BorderTestStopsTheMeshAtTheCloudsEdge)
             << " h with it\n";
   EXPECT_GT(without, 0.5 * h);
   EXPECT_LT(with, 0.2 * h);
+}
+
+// The trim (MeshOptions::trimDistance) on a plane sampled with a round gap, 4 spacings in radius:
+// without it the mesh bridges the gap (each vertex is within MaxDistance of a point, the
+// triangles between them are not); with it no point of the mesh is farther than trimDistance
+// local spacings from the cloud (to within 0.3 spacing: the cut is linear along edges of at most
+// one spacing), the cut opens the gap and nothing else, and the plane is not moved.
+TEST(AdaptiveMesh, TrimCutsTheMeshWhereItLeavesTheCloud)
+{
+  const double half = 20.0;
+  const double gap = 4.0; // radius of the unsampled disc, in spacings
+  std::vector<Vec3> pts;
+  for (int i = -20; i <= 20; ++i)
+  {
+    for (int j = -20; j <= 20; ++j)
+    {
+      if (std::hypot(i, j) >= gap)
+      {
+        pts.emplace_back(i, j, 0.0);
+      }
+    }
+  }
+  PointIndex index(pts, 3);
+  MeshOptions options;
+  options.domain.maxDistance = 1.0; // about five spacings: the vertex test alone covers the gap
+  options.domain.maxBorderOffset = 0.0;
+  const SurfaceMesh bridged = meshWithScales(index, 3.0, options);
+  options.trimDistance = 2.5;
+  const SurfaceMesh trimmed = meshWithScales(index, 3.0, options);
+  const std::vector<double> spacing = estimateLocalSpacings(index, 12, 1);
+
+  // The largest distance to the cloud, in the nearest point's spacing, over a barycentric grid
+  // of every triangle.
+  auto farthest = [&](const SurfaceMesh& mesh) {
+    double worst = 0.0;
+    for (const auto& t : mesh.triangles)
+    {
+      for (int a = 0; a <= 8; ++a)
+      {
+        for (int b = 0; a + b <= 8; ++b)
+        {
+          const Vec3 x = (a * mesh.points[t[0]] + b * mesh.points[t[1]] + (8 - a - b) * mesh.points[t[2]]) / 8.0;
+          const auto [j, d2] = index.nearest(x);
+          worst = std::max(worst, std::sqrt(d2) / spacing[j]);
+        }
+      }
+    }
+    return worst;
+  };
+  const double before = farthest(bridged);
+  const double after = farthest(trimmed);
+  std::cout << "h_i " << index.minScale() << " to " << index.maxScale() << "; farthest: bridged " << before
+            << " spacings, trimmed " << after << " spacings; trimmed triangles " << trimmed.statistics.trimmedSimplices
+            << ", boundary edges " << bridged.statistics.boundaryEdges << " -> " << trimmed.statistics.boundaryEdges << "\n";
+  ASSERT_GT(before, 3.5) << "the untrimmed mesh must bridge the gap for this test to mean anything";
+  EXPECT_LE(after, 2.5 + 0.3);
+  EXPECT_GT(trimmed.statistics.trimmedSimplices, 0u);
+  EXPECT_EQ(trimmed.statistics.components, 1u);
+  EXPECT_EQ(trimmed.statistics.nonManifoldEdges, 0u);
+  // Boundary edges only around the gap (the cut) and at the patch's own border.
+  for (const auto& [a, b] : boundaryEdges(trimmed))
+  {
+    for (const std::uint32_t v : { a, b })
+    {
+      const Vec3& p = trimmed.points[v];
+      const bool atGap = std::hypot(p.x(), p.y()) < gap;
+      const bool atBorder = std::max(std::abs(p.x()), std::abs(p.y())) > half - 3.0;
+      EXPECT_TRUE(atGap || atBorder) << "boundary vertex at " << p.transpose();
+    }
+  }
+  // The cut leaves a hole in the gap: some mesh point near its centre is gone.
+  double nearestToCentre = std::numeric_limits<double>::infinity();
+  for (const Vec3& p : trimmed.points)
+  {
+    nearestToCentre = std::min(nearestToCentre, std::hypot(p.x(), p.y()));
+  }
+  EXPECT_GT(nearestToCentre, 0.5);
+  for (const Vec3& p : trimmed.points)
+  {
+    EXPECT_LT(std::abs(p.z()), 1e-9) << "the trim moves no vertex off the plane";
+  }
+  for (const double bad : { -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity() })
+  {
+    options.trimDistance = bad;
+    EXPECT_THROW(meshWithScales(index, 3.0, options), std::invalid_argument) << bad;
+  }
 }
 
 // The octree is refused like the grid: counted level by level, before its cells are allocated.

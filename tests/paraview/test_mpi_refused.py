@@ -3,8 +3,9 @@ more than one process must refuse what does not run distributed (the field sampl
 OrientationMode Propagate and the projection with PropagateNormals, spanning trees over every
 sample or end point; APSS and RIMLS with ghost points, whose cloud normals do not travel with
 them; a sensor frame with ghost points, where one process takes a scale per point
-that the ghost margins do not follow yet, and one h would be another surface: an error and an
-empty output)
+that the ghost margins do not follow yet, and one h would be another surface; the mesher's trim
+with ghost points, whose local spacings need every point's neighbours: an error and an empty
+output)
 instead of computing on each rank's piece alone, which differs from the one-process answer near
 every piece's border without saying so. (Every filter runs distributed otherwise:
 test_mpi_distributed.py.)
@@ -37,13 +38,15 @@ if rank == 0 and cloud.GetDataInformation().GetNumberOfPoints() == 0:
     sys.exit("the cloud source gave no points on rank 0")
 # A small depth frame (field data GridDimensions and Viewpoint): one process takes a scale per point.
 frame = PointSetSurfaceCloudSource(Scene="Depth Camera", ImageWidth=64, ImageHeight=48)
+sphere = PointSetSurfaceCloudSource(Scene="Sphere", NumberOfPoints=2000)
 refused = 0
 for name, proxy in (("sampler", PointSetSurfaceFieldSampler(Input=cloud, GenerateSamplingGrid=1,
                                                             OrientationMode="Propagate")),
                     ("projection", PointSetSurfaceProjection(Input=cloud, PropagateNormals=1)),
                     ("rimls ghosts", PointSetSurfaceProjection(Input=cloud, Variant="RIMLS (Robust Implicit MLS)",
                                                                GhostMargin=3.0)),
-                    ("frame ghosts", PointSetSurfaceProjection(Input=frame, GhostMargin=3.0))):
+                    ("frame ghosts", PointSetSurfaceProjection(Input=frame, GhostMargin=3.0)),
+                    ("trim ghosts", PointSetSurfaceMesh(Input=sphere, GhostMargin=3.0, TrimDistance=2.5))):
     proxy.UpdatePipeline()
     points = proxy.GetDataInformation().GetNumberOfPoints()
     if points != 0:
@@ -51,8 +54,8 @@ for name, proxy in (("sampler", PointSetSurfaceFieldSampler(Input=cloud, Generat
     refused += 1
     if rank == 0:
         print("ok   %-12s refused in a %d-process run" % (name, ranks), flush=True)
-if refused != 4:
-    sys.exit("only %d of 4 filters checked" % refused)
+if refused != 5:
+    sys.exit("only %d of 5 filters checked" % refused)
 # The frame itself is fine: with the gathered cloud (no ghost points) it is projected.
 gathered = PointSetSurfaceProjection(Input=frame)
 gathered.UpdatePipeline()

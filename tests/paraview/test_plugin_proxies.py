@@ -211,9 +211,10 @@ LINE_ARRAYS = ["Converged", "StopReason", "StartPointId"]
 MESH_ARRAYS = ["Normals", "Stability", "Energy", "DomainLabel", "DistanceToCloud", "NormalAngle", "StartAngle",
                "StartStability", "Displacement", "Iterations", "StopReason"]
 MESH_FIELDS = ["ScaleFactor", "Dimension", "PointScales", "CellSize", "Band", "MaxDistance", "MaxBorderOffset",
-               "Procedure", "BandCells", "CellLevels", "HangingVertices",
+               "TrimDistance", "Procedure", "BandCells", "CellLevels", "HangingVertices",
                "GridVertices", "Crossings",
                "DroppedVertices", "MaximumCrossings", "SeamSimplices", "FoldedTriangles", "RemovedPieces", "CoveredPieces", "ClosedHoles",
+               "DanglingTriangles", "TrimmedTriangles",
                "UndefinedGridVertices", "Components", "BoundaryEdges", "NonManifoldEdges", "EulerCharacteristic"]
 PASSED = ["DistanceToShape"]  # the start / probe points' own array, passed through
 started = time.time()

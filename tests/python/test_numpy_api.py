@@ -535,7 +535,7 @@ class DefaultsTest(unittest.TestCase):
         self.check(pss.mesh, pss.vtkPointSetSurfaceMesher(),
                    {"cell": "GetCellSize", "band": "GetBand", "project_vertices": "GetProjectVertices",
                     "max_distance": "GetMaxDistance", "max_normal_angle": "GetMaxNormalAngle",
-                    "max_border_offset": "GetMaxBorderOffset", "max_vertex_travel": "GetMaxVertexTravel", "max_seam_angle": "GetMaxSeamAngle",
+                    "max_border_offset": "GetMaxBorderOffset", "trim_distance": "GetTrimDistance", "max_vertex_travel": "GetMaxVertexTravel", "max_seam_angle": "GetMaxSeamAngle",
                     "max_fold_angle": "GetMaxFoldAngle", "max_hole_edges": "GetMaxHoleEdges",
                     "min_piece_area": "GetMinPieceArea", "covered_piece_area": "GetCoveredPieceArea",
                     "max_band_cells": "GetMaximumNumberOfBandCells"})

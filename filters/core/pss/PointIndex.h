@@ -249,6 +249,23 @@ double estimateScale(const PointIndex& index, int k = 10, double multiplier = 1.
 std::vector<double> estimateLocalScales(const PointIndex& index, int k = 10, double multiplier = 1.0,
   int smoothing = 2, int threads = 1, double maxRatio = 6.0);
 
+/**
+ * The local point spacing, in two steps so that a caller with its own loop (the mesher's stages)
+ * can run them: rawSpacing() is sqrt(pi / k) times the distance from index point @p i to its
+ * @p k-th nearest other point (the side of the square each sample covers: a square grid of
+ * spacing s gives 1.02 s with k = 12), and fills @p neighbours with those k (index order);
+ * smoothedSpacing() is the median of @p raw over the point and those neighbours. It follows the
+ * density, also where a depth frame's quantization puts the points in stripes. 0 when the cloud
+ * has no k other points. The mesher's trim (MeshOptions::trimDistance) and the reference-free
+ * mesh metric measure distances in it.
+ */
+double rawSpacing(const PointIndex& index, std::size_t i, std::size_t k, std::vector<std::uint32_t>& neighbours,
+  std::vector<std::pair<std::uint32_t, double>>& scratch);
+double smoothedSpacing(const std::vector<double>& raw, std::size_t i, const std::uint32_t* neighbours, std::size_t k,
+  std::vector<double>& scratch);
+/// Both steps for every point (index order), on @p threads threads.
+std::vector<double> estimateLocalSpacings(const PointIndex& index, std::size_t k = 12, int threads = 1);
+
 /// How much the positive finite @p scales vary: their 90th percentile over their 10th (1 when
 /// there is none). The automatic scale mode compares it to a threshold (docs/paper.md).
 double scaleSpread(const std::vector<double>& scales);

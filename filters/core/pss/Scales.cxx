@@ -129,6 +129,64 @@ std::vector<double> estimateLocalScales(
   return out;
 }
 
+double rawSpacing(const PointIndex& index, std::size_t i, std::size_t k, std::vector<std::uint32_t>& neighbours,
+  std::vector<std::pair<std::uint32_t, double>>& scratch)
+{
+  index.kNearest(index.point(i), k + 1, scratch); // the point itself comes first
+  neighbours.clear();
+  for (std::size_t j = 1; j < scratch.size(); ++j)
+  {
+    neighbours.push_back(scratch[j].first);
+  }
+  if (scratch.size() < k + 1)
+  {
+    return 0.0;
+  }
+  return std::sqrt(M_PI / static_cast<double>(k)) * std::sqrt(scratch.back().second);
+}
+
+double smoothedSpacing(const std::vector<double>& raw, std::size_t i, const std::uint32_t* neighbours, std::size_t k,
+  std::vector<double>& scratch)
+{
+  scratch.assign(1, raw[i]);
+  for (std::size_t j = 0; j < k; ++j)
+  {
+    scratch.push_back(raw[neighbours[j]]);
+  }
+  const auto middle = scratch.begin() + static_cast<std::ptrdiff_t>(scratch.size() / 2);
+  std::nth_element(scratch.begin(), middle, scratch.end());
+  return *middle;
+}
+
+std::vector<double> estimateLocalSpacings(const PointIndex& index, std::size_t k, int threads)
+{
+  const std::size_t n = index.size();
+  if (k < 1 || n < k + 1)
+  {
+    return std::vector<double>(n, 0.0);
+  }
+  std::vector<double> raw(n);
+  std::vector<std::uint32_t> neighbours(n * k);
+  parallelFor(n, threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::uint32_t> near;
+    std::vector<std::pair<std::uint32_t, double>> scratch;
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      raw[i] = rawSpacing(index, i, k, near, scratch);
+      std::copy(near.begin(), near.end(), neighbours.begin() + static_cast<std::ptrdiff_t>(i * k));
+    }
+  });
+  std::vector<double> out(n);
+  parallelFor(n, threads, [&](std::size_t begin, std::size_t end) {
+    std::vector<double> scratch;
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      out[i] = smoothedSpacing(raw, i, neighbours.data() + i * k, k, scratch);
+    }
+  });
+  return out;
+}
+
 double scaleSpread(const std::vector<double>& scales)
 {
   std::vector<double> finite;

@@ -42,6 +42,10 @@ void MeshOptions::validate() const
   {
     throw std::invalid_argument("the mesh's smallest piece area must be a finite number of h^2, at least 0");
   }
+  if (!(trimDistance >= 0.0 && std::isfinite(trimDistance)))
+  {
+    throw std::invalid_argument("the mesh's trim distance must be a finite number of local spacings, at least 0");
+  }
   if (!(coveredPieceArea >= 0.0 && std::isfinite(coveredPieceArea)))
   {
     throw std::invalid_argument("the mesh's covered piece area must be a finite number of h^2, at least 0");
@@ -681,11 +685,34 @@ std::optional<SurfaceMesh> runMeshStages(
   mesher.findHoles(mesh);
   if (!run(MeshStage{ mesher.holeCount(), [&](std::size_t j) { return mesher.holeCentre(j); },
         &SurfaceMesher::evaluateHole, &SurfaceMesher::holeValues, &SurfaceMesher::setHoleValues,
-        SurfaceMesher::HoleWidth, LoopShare(0.98, 1.0) }))
+        SurfaceMesher::HoleWidth, LoopShare(0.98, 0.99) }))
   {
     return std::nullopt;
   }
   mesher.closeHoles(mesh);
+  for (mesher.beginSpacings(); mesher.spacingCount() > 0;)
+  {
+    if (!run(MeshStage{ mesher.spacingCount(), [&](std::size_t i) { return mesher.spacingPoint(i); },
+          &SurfaceMesher::evaluateSpacing, &SurfaceMesher::spacingValues, &SurfaceMesher::setSpacingValues, 1,
+          LoopShare(0.99, 1.0) }))
+    {
+      return std::nullopt;
+    }
+    if (!mesher.nextSpacingPass())
+    {
+      break;
+    }
+  }
+  for (mesher.beginTrim(mesh); mesher.trimSampleCount() > 0; mesher.refineTrim(mesh))
+  {
+    if (!run(MeshStage{ mesher.trimSampleCount(), [&](std::size_t i) { return mesher.trimSample(i); },
+          &SurfaceMesher::evaluateTrimSample, &SurfaceMesher::trimValues, &SurfaceMesher::setTrimValues,
+          SurfaceMesher::TrimWidth, LoopShare(0.99, 1.0) }))
+    {
+      return std::nullopt;
+    }
+  }
+  mesher.cutFar(mesh);
   laps.lap(t.finish);
   return mesh;
 }

@@ -54,6 +54,17 @@
  *    even when every closing folds (by the fan, else the least-area triangulation): its border was
  *    turned inside out by the projection or twisted by a pleat of the contour, and any closing
  *    lies nearer the surface than the hole; a smaller piece's outline is left alone.
+ * 8. trim (3D, when trimDistance > 0): every vertex passed the distance criterion, but a
+ *    triangle can still span a gap of the scan, where a smoothed h_i is wider than the spacing.
+ *    Every cloud point's local spacing is measured (two parallel passes), then the excess of the
+ *    distance to the nearest cloud point over trimDistance times that point's spacing is sampled
+ *    at the vertices, the edges' midpoints and the triangles' centres; edges longer than one
+ *    spacing with a sample near the cut are split at their midpoints (the decision is the edge's
+ *    own, so both of its triangles split it and no crack opens), level by level (at most
+ *    TrimLevels); then each triangle is cut along the line where the excess, linear along its
+ *    edges, changes sign. A region beyond the distance that nowhere exceeds it by 0.1 spacing is
+ *    kept (its cut would be a pinhole), and pieces below minPieceArea that the cut leaves are
+ *    removed. The new vertices lie on the flat triangles, so the trim moves no surface.
  * Every stage is deterministic: the result does not depend on the number of threads.
  */
 #pragma once
@@ -90,6 +101,10 @@ struct MeshOptions
   /// 3D: connected pieces of a smaller area, in units of h^2, are removed (islands that a few
   /// stray points define; on the bunny scans 10 leaves one piece). 0 keeps every piece.
   double minPieceArea = 10.0;
+  /// 3D: the mesh is cut where it runs farther than this many local point spacings (of the
+  /// nearest cloud point, pss::smoothedSpacing) from every cloud point (stage 8). 0 (the
+  /// default) turns the trim off. The mesher must hold the whole cloud (no ghost points).
+  double trimDistance = 0.0;
   /// 3D: pieces smaller than this, in units of h^2, other than the largest, are removed when every
   /// vertex of theirs lies within 3 h of the largest piece's interior (its nearest vertex of the
   /// largest piece is not on a border): a second layer over surface the largest piece already
@@ -137,6 +152,8 @@ struct MeshStatistics
   std::size_t removedPieces = 0;      ///< pieces smaller than MeshOptions::minPieceArea (3D)
   std::size_t coveredPieces = 0;      ///< small pieces over the largest one (MeshOptions::coveredPieceArea)
   std::size_t closedHoles = 0;        ///< small holes closed (3D: see MeshOptions::maxHoleEdges)
+  std::size_t danglingTriangles = 0;   ///< triangles hanging by a vertex alone, removed (3D)
+  std::size_t trimmedSimplices = 0;   ///< triangles cut or dropped by the trim (MeshOptions::trimDistance)
   std::size_t components = 0;         ///< connected pieces of the result
   std::size_t boundaryEdges = 0;      ///< edges of one triangle (3D); polyline ends (2D)
   std::size_t nonManifoldEdges = 0;   ///< edges of three or more triangles (3D); vertices of 3+ segments (2D)
@@ -247,18 +264,47 @@ public:
   /// Closes the holes findHoles() found, as evaluateHole() judged them, and counts the topology.
   void closeHoles(SurfaceMesh& mesh);
 
+  /// Whether stage 8 runs (3D, trimDistance > 0).
+  bool trims() const;
+  /// Stage 8 first measures every cloud point's local spacing (pss::rawSpacing, then
+  /// pss::smoothedSpacing): two passes of spacingCount() items (none without the trim), each
+  /// after beginSpacings() or a nextSpacingPass() that returned true.
+  std::size_t spacingCount() const;
+  void beginSpacings();
+  const Vec3& spacingPoint(std::size_t i) const { return Surface->index().point(i); }
+  void evaluateSpacing(std::size_t i, Workspace& ws);
+  bool nextSpacingPass();
+  std::vector<double> spacingValues() const;
+  void setSpacingValues(const std::vector<double>& values);
+  /// Starts stage 8 on @p mesh (the closed mesh): queues the samples of its first level (none when
+  /// trims() is false).
+  void beginTrim(const SurfaceMesh& mesh);
+  std::size_t trimSampleCount() const { return TrimSamples.size(); }
+  const Vec3& trimSample(std::size_t i) const { return TrimSamples[i]; }
+  /// How far sample @p i is from the cloud beyond trimDistance local spacings, and that spacing.
+  void evaluateTrimSample(std::size_t i, Workspace& ws);
+  /// Splits the edges that need a closer look and queues the next level's samples; false when
+  /// none remain (then cutFar() follows).
+  bool refineTrim(SurfaceMesh& mesh);
+  /// Cuts @p mesh along the line where its excess over trimDistance local h changes sign, then
+  /// removes pieces below minPieceArea and counts the topology again.
+  void cutFar(SurfaceMesh& mesh);
+
   /// The results of evaluateVertex() (CornerWidth doubles per corner), classifyCrossing()
   /// (EvidenceWidth per crossing) and evaluateHole() (HoleWidth per hole) as flat arrays, and
   /// back: what a StageSplit exchanges.
   static constexpr std::size_t CornerWidth = 5;
   static constexpr std::size_t EvidenceWidth = 24;
   static constexpr std::size_t HoleWidth = EvidenceWidth + 1;
+  static constexpr std::size_t TrimWidth = 2;
   std::vector<double> cornerValues() const;
   void setCornerValues(const std::vector<double>& values);
   std::vector<double> crossingEvidence() const;
   void setCrossingEvidence(const std::vector<double>& values);
   std::vector<double> holeValues() const;
   void setHoleValues(const std::vector<double>& values);
+  std::vector<double> trimValues() const;
+  void setTrimValues(const std::vector<double>& values);
 
 private:
   using Key = std::uint64_t;
@@ -315,6 +361,13 @@ private:
   /// Triangles of the convex polygon @p loop whose vertex k lies on the sides of bit mask @p sides[k].
   void triangulatePolygon(const std::vector<std::uint32_t>& loop, const std::vector<unsigned>& sides, const Vec3& towardPositive);
   void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, const Vec3& towardPositive);
+  /// Keeps the @p triangles of pieces of at least minPieceArea h^2 as @p mesh's, without the unused vertices.
+  void keepLargePieces(SurfaceMesh& mesh, const std::vector<std::array<std::uint32_t, 3>>& triangles);
+  /// Sets the excess of every connected region beyond the trim distance that nowhere exceeds it
+  /// by TrimMargin local spacings to 0 (kept: a pinhole where a gap is just wider than the distance).
+  void keepShallowExcess(const SurfaceMesh& mesh);
+  /// Queues the samples of the trim's active triangles: unsettled vertices, edge midpoints, centres.
+  void queueTrimSamples(const SurfaceMesh& mesh);
   /// True when a cell of normal @p face (unnormalized) is within maxFoldAngle of @p vertexNormals' sum.
   bool isUnfolded(const Vec3& face, const Vec3& vertexNormals) const;
   /// True when a triangle a, b, c that closes a hole is unfolded, or is a sliver facing @p vertexNormals' side.
@@ -367,6 +420,40 @@ private:
   std::vector<double> VertexCell;                ///< assemble(): each vertex's cell side
   std::vector<DomainEvidence> HoleEvidence;      ///< evaluateHole(): each centre's projection (more than 3 edges)
   std::vector<double> HoleCloudGapSq;           ///< and its squared distance to the cloud, in local h^2
+  /// Stage 8's state: the samples of the current level, what each one is, their values (excess
+  /// and local spacing, TrimWidth each), each vertex's excess, each sampled edge midpoint's, and which
+  /// triangles are sampled at this level.
+  struct TrimSample
+  {
+    double excess = 0.0;
+    double scale = 0.0;
+  };
+  struct TrimSlot
+  {
+    enum Kind : std::uint8_t { Vertex, Midpoint, Centroid } kind;
+    std::uint64_t id; ///< the vertex, the edge's key or the triangle
+  };
+  /// Levels of edge splitting at most (each halves the edges it splits).
+  static constexpr int TrimLevels = 8;
+  /// An edge is split when one of its samples is within this fraction of its length of the cut...
+  static constexpr double TrimNearFraction = 0.25;
+  /// ... and it is longer than this, in local spacings.
+  static constexpr double TrimFinest = 1.0;
+  /// Regions beyond the trim distance by less than this, in local spacings, everywhere are kept.
+  static constexpr double TrimMargin = 0.1;
+  static constexpr std::size_t SpacingNeighbourCount = 12;
+  int SpacingPass = 0;
+  std::vector<double> RawSpacing;   ///< per cloud point (index order), the first pass
+  std::vector<double> CloudSpacing; ///< the smoothed spacing, the second
+  std::vector<std::uint32_t> SpacingNeighbours; ///< SpacingNeighbourCount per cloud point
+  std::vector<Vec3> TrimSamples;
+  std::vector<TrimSlot> TrimSlots;
+  std::vector<double> TrimValues;
+  std::vector<double> VertexExcess;
+  std::vector<double> VertexScale;
+  std::unordered_map<std::uint64_t, TrimSample> MidpointExcess;
+  std::vector<char> TrimActive;
+  int TrimLevel = 0;
   MeshStatistics Statistics;
 };
 

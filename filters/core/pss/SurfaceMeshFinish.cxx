@@ -5,6 +5,7 @@
 #include "pss/Kernel.h"
 #include "pss/PointIndex.h"
 #include "pss/SurfaceMesh.h"
+#include "pss/SurfaceMeshPieces.h"
 
 #include <Eigen/Geometry>
 
@@ -21,121 +22,8 @@ namespace pss
 namespace
 {
 
-// A disjoint-set forest for counting connected pieces.
-class UnionFind
-{
-public:
-  explicit UnionFind(std::size_t n) : Parent(n) { std::iota(Parent.begin(), Parent.end(), 0); }
-  std::size_t find(std::size_t x)
-  {
-    while (Parent[x] != x)
-    {
-      Parent[x] = Parent[Parent[x]];
-      x = Parent[x];
-    }
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b)
-  {
-    a = find(a);
-    b = find(b);
-    if (a != b)
-    {
-      Parent[std::max(a, b)] = std::min(a, b);
-    }
-  }
+using namespace piece_utils;
 
-private:
-  std::vector<std::size_t> Parent;
-};
-
-// Keeps the cells @p keep accepts and renumbers the vertices they use, in their old order
-// (newIndex: old vertex -> new, or -1 when unused).
-template <std::size_t K, class Keep>
-std::vector<std::array<std::uint32_t, K>> keepCells(const std::vector<std::array<std::uint32_t, K>>& cells,
-  std::size_t vertices, Keep&& keep, std::vector<std::uint32_t>& newIndex)
-{
-  std::vector<std::array<std::uint32_t, K>> out;
-  std::copy_if(cells.begin(), cells.end(), std::back_inserter(out), keep);
-  std::vector<char> used(vertices, 0);
-  for (const auto& cell : out)
-  {
-    for (std::uint32_t v : cell)
-    {
-      used[v] = 1;
-    }
-  }
-  std::uint32_t next = 0;
-  for (std::size_t v = 0; v < used.size(); ++v)
-  {
-    newIndex[v] = used[v] ? next++ : static_cast<std::uint32_t>(-1);
-  }
-  for (auto& cell : out)
-  {
-    for (std::uint32_t& v : cell)
-    {
-      v = newIndex[v];
-    }
-  }
-  return out;
-}
-
-double cellMeasure(const std::array<std::uint32_t, 3>& t, const std::vector<Vec3>& points)
-{
-  return 0.5 * (points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).norm();
-}
-
-double cellMeasure(const std::array<std::uint32_t, 2>& s, const std::vector<Vec3>& points)
-{
-  return (points[s[1]] - points[s[0]]).norm();
-}
-
-// The connected pieces of a mesh's cells (triangles or segments): which piece each vertex is in
-// (the root of its set), the measure (area or length) of each piece at its root, -1 where no piece
-// is rooted, and the total, summed in the cells' order.
-struct Pieces
-{
-  UnionFind sets;
-  std::vector<double> measure;
-  double total = 0.0;
-};
-
-template <std::size_t K>
-Pieces piecesOf(const std::vector<std::array<std::uint32_t, K>>& cells, const std::vector<Vec3>& points)
-{
-  Pieces p{ UnionFind(points.size()), std::vector<double>(points.size(), -1.0), 0.0 };
-  for (const auto& c : cells)
-  {
-    for (std::size_t k = 1; k < K; ++k)
-    {
-      p.sets.unite(c[0], c[k]);
-    }
-  }
-  for (const auto& c : cells)
-  {
-    const double m = cellMeasure(c, points);
-    double& root = p.measure[p.sets.find(c[0])];
-    root = std::max(root, 0.0) + m;
-    p.total += m;
-  }
-  return p;
-}
-
-// Per vertex: whether the connected piece of @p triangles it belongs to has an area of at least
-// @p minArea; counts the smaller pieces in @p smallPieces.
-std::vector<char> largePieces(const std::vector<std::array<std::uint32_t, 3>>& triangles,
-  const std::vector<Vec3>& points, double minArea, std::size_t& smallPieces)
-{
-  Pieces pieces = piecesOf(triangles, points);
-  smallPieces = static_cast<std::size_t>(std::count_if(pieces.measure.begin(), pieces.measure.end(),
-    [minArea](double a) { return a >= 0.0 && a < minArea; }));
-  std::vector<char> large(points.size());
-  for (std::size_t v = 0; v < points.size(); ++v)
-  {
-    large[v] = pieces.measure[pieces.sets.find(v)] >= minArea ? 1 : 0;
-  }
-  return large;
-}
 
 // The sides of @p triangles grouped by their edge's lower vertex: for a vertex v, entries
 // first[v] .. first[v + 1] - 1 of `ends` are (higher vertex, whether the side runs from v to it),
@@ -327,6 +215,25 @@ SurfaceMesh SurfaceMesher::finish(Workspace& ws)
     evaluateHole(j, ws);
   }
   closeHoles(mesh);
+  for (beginSpacings(); spacingCount() > 0;)
+  {
+    for (std::size_t i = 0; i < spacingCount(); ++i)
+    {
+      evaluateSpacing(i, ws);
+    }
+    if (!nextSpacingPass())
+    {
+      break;
+    }
+  }
+  for (beginTrim(mesh); trimSampleCount() > 0; refineTrim(mesh))
+  {
+    for (std::size_t i = 0; i < trimSampleCount(); ++i)
+    {
+      evaluateTrimSample(i, ws);
+    }
+  }
+  cutFar(mesh);
   return mesh;
 }
 
@@ -677,10 +584,40 @@ void SurfaceMesher::closeHoles(SurfaceMesh& mesh)
   Pieces pieces = piecesOf(mesh.triangles, mesh.points);
   const auto largest = static_cast<std::size_t>(
     std::max_element(pieces.measure.begin(), pieces.measure.end()) - pieces.measure.begin());
+  // A border of three edges that is one triangle's own (a triangle hanging by a vertex) is not a
+  // hole: closing it would lay a second, reversed triangle over the first. Such a triangle is
+  // removed instead.
+  std::vector<std::array<std::uint32_t, 3>> lone;
+  for (const auto& hole : holes)
+  {
+    if (hole.size() == 3)
+    {
+      lone.push_back(sortedTriangle({ { hole[0], hole[1], hole[2] } }));
+    }
+  }
+  std::sort(lone.begin(), lone.end());
+  std::vector<char> isTriangle(lone.size(), 0);
+  for (const auto& t : mesh.triangles)
+  {
+    const auto it = std::lower_bound(lone.begin(), lone.end(), sortedTriangle(t));
+    if (it != lone.end() && *it == sortedTriangle(t))
+    {
+      isTriangle[static_cast<std::size_t>(it - lone.begin())] = 1;
+    }
+  }
   for (std::size_t j = 0; j < holes.size(); ++j)
   {
     const std::vector<std::uint32_t>& hole = holes[j];
     const std::size_t k = hole.size();
+    if (k == 3)
+    {
+      const auto it = std::lower_bound(lone.begin(), lone.end(), sortedTriangle({ { hole[0], hole[1], hole[2] } }));
+      if (isTriangle[static_cast<std::size_t>(it - lone.begin())])
+      {
+        isTriangle[static_cast<std::size_t>(it - lone.begin())] = 2;
+        continue;
+      }
+    }
     const Vec3& centre = HoleCentres[j];
     Vec3 normalSum = Vec3::Zero();
     for (const std::uint32_t v : hole)
@@ -777,6 +714,17 @@ void SurfaceMesher::closeHoles(SurfaceMesh& mesh)
     ++Statistics.closedHoles;
   }
   Holes = {};
+  if (std::find(isTriangle.begin(), isTriangle.end(), 2) != isTriangle.end())
+  {
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    std::copy_if(mesh.triangles.begin(), mesh.triangles.end(), std::back_inserter(triangles),
+      [&](const std::array<std::uint32_t, 3>& t) {
+        const auto it = std::lower_bound(lone.begin(), lone.end(), sortedTriangle(t));
+        return it == lone.end() || *it != sortedTriangle(t) || isTriangle[static_cast<std::size_t>(it - lone.begin())] != 2;
+      });
+    Statistics.danglingTriangles = mesh.triangles.size() - triangles.size();
+    keepLargePieces(mesh, triangles);
+  }
   mesh.statistics = Statistics;
   countTopology(mesh);
 }
