@@ -279,7 +279,6 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.trimDistance = this->TrimDistance;
   this->UsedMaxDistance = options.domain.maxDistance;
   this->UsedMaxBorderOffset = options.domain.maxBorderOffset;
-  this->UsedTrimDistance = options.trimDistance;
   // In a distributed run every rank builds the same band; each computes its block of the corners,
   // of the crossings and of the holes' centres, and the blocks are exchanged after each stage.
   bool tooLarge = false;
@@ -339,7 +338,7 @@ int vtkPointSetSurfaceMesher::RequestData(
   for (const auto& entry : { std::make_pair("CellSize", this->CellSize), std::make_pair("Band", this->Band),
          std::make_pair("MaxDistance", this->UsedMaxDistance),
          std::make_pair("MaxBorderOffset", this->UsedMaxBorderOffset),
-         std::make_pair("TrimDistance", this->UsedTrimDistance) })
+         std::make_pair("TrimDistance", this->TrimDistance) })
   {
     auto a = pss_vtk::NewArray<vtkDoubleArray>(entry.first, 1, 1);
     a->SetValue(0, entry.second);
@@ -439,7 +438,7 @@ void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxHoleEdges: " << this->MaxHoleEdges << "\n";
   os << indent << "MinPieceArea: " << this->MinPieceArea << "\n";
   os << indent << "MaxBorderOffset: " << this->MaxBorderOffset << " (used " << this->UsedMaxBorderOffset << ")\n";
-  os << indent << "TrimDistance: " << this->TrimDistance << " (used " << this->UsedTrimDistance << ")\n";
+  os << indent << "TrimDistance: " << this->TrimDistance << "\n";
   os << indent << "CoveredPieceArea: " << this->CoveredPieceArea << "\n";
   os << indent << "MaximumNumberOfBandCells: " << this->MaximumNumberOfBandCells << "\n";
   os << indent << "GhostMargin: " << this->GhostMargin << "\n";

@@ -181,11 +181,10 @@ public:
   ///@}
 
   ///@{
-  /// The distance, border and trim criteria the last run applied, the automatic values resolved
-  /// (also the output's field data MaxDistance, MaxBorderOffset and TrimDistance).
+  /// The distance and border criteria the last run applied, the automatic values resolved (also
+  /// the output's field data MaxDistance and MaxBorderOffset; TrimDistance is recorded as well).
   vtkGetMacro(UsedMaxDistance, double);
   vtkGetMacro(UsedMaxBorderOffset, double);
-  vtkGetMacro(UsedTrimDistance, double);
   ///@}
 
   ///@{
@@ -304,7 +303,6 @@ protected:
   int UsedProcedure = EXTREMAL;
   double UsedMaxDistance = 1.0;
   double UsedMaxBorderOffset = 0.0;
-  double UsedTrimDistance = 0.0;
   double TrimDistance = 0.0;
   double MaxDistance = MAX_DISTANCE_AUTOMATIC;
   double MaxNormalAngle = 30.0;

@@ -337,6 +337,26 @@ TEST(AdaptiveMesh, TrimCutsTheMeshWhereItLeavesTheCloud)
   }
 }
 
+// Coincident points have no spacing of their own (their 12th neighbour is at distance 0, and so
+// is the median around them): the trim must not take every sample near them for far. A plane
+// sampled every 0.5 h with one point repeated 16 times is not cut anywhere.
+TEST(AdaptiveMesh, TrimIgnoresCoincidentPoints)
+{
+  std::vector<Vec3> pts = planeCloud(10.0, 0.5);
+  pts.insert(pts.end(), 15, Vec3(0.5, 0.5, 0.0));
+  const PointIndex index(pts, 3);
+  auto surface = makeSurface(Variant::CenterOfMass, index, params(1.0));
+  MeshOptions options;
+  options.trimDistance = 2.5;
+  const SurfaceMesh mesh = extractSurfaceMesh(*surface, options, 0);
+  EXPECT_EQ(mesh.statistics.trimmedSimplices, 0u);
+  EXPECT_EQ(mesh.statistics.components, 1u);
+  for (const auto& [a, b] : boundaryEdges(mesh))
+  {
+    EXPECT_GT(std::hypot(mesh.points[a].x(), mesh.points[a].y()), 5.0) << "boundary vertex near the duplicates";
+  }
+}
+
 // The octree is refused like the grid: counted level by level, before its cells are allocated.
 TEST(AdaptiveMesh, AbsurdBandsAreRefusedBeforeAllocating)
 {

@@ -426,7 +426,7 @@ private:
   struct TrimSample
   {
     double excess = 0.0;
-    double scale = 0.0;
+    double spacing = 0.0;
   };
   struct TrimSlot
   {
@@ -450,7 +450,7 @@ private:
   std::vector<TrimSlot> TrimSlots;
   std::vector<double> TrimValues;
   std::vector<double> VertexExcess;
-  std::vector<double> VertexScale;
+  std::vector<double> VertexSpacing;
   std::unordered_map<std::uint64_t, TrimSample> MidpointExcess;
   std::vector<char> TrimActive;
   int TrimLevel = 0;

@@ -137,7 +137,7 @@ void SurfaceMesher::beginTrim(const SurfaceMesh& mesh)
   TrimSamples.clear();
   TrimLevel = 0;
   VertexExcess.assign(mesh.points.size(), std::numeric_limits<double>::quiet_NaN());
-  VertexScale.assign(mesh.points.size(), 0.0);
+  VertexSpacing.assign(mesh.points.size(), 0.0);
   MidpointExcess.clear();
   TrimActive.assign(mesh.triangles.size(), 1);
   if (trims())
@@ -185,7 +185,8 @@ void SurfaceMesher::evaluateTrimSample(std::size_t i, Workspace& ws)
   const PointIndex& index = Surface->index();
   const auto [nearest, sqDist] = index.nearest(TrimSamples[i]);
   noteReach(index, index.restrict(TrimSamples[i]), sqDist, ws);
-  const double local = CloudSpacing[nearest];
+  // Coincident points (a dozen duplicates) have no spacing of their own: the typical h stands in.
+  const double local = CloudSpacing[nearest] > 0.0 ? CloudSpacing[nearest] : Frame.h;
   TrimValues[2 * i] = std::sqrt(sqDist) - Options.trimDistance * local;
   TrimValues[2 * i + 1] = local;
 }
@@ -214,7 +215,7 @@ bool SurfaceMesher::refineTrim(SurfaceMesh& mesh)
     {
       case TrimSlot::Vertex:
         VertexExcess[TrimSlots[s].id] = value.excess;
-        VertexScale[TrimSlots[s].id] = value.scale;
+        VertexSpacing[TrimSlots[s].id] = value.spacing;
         break;
       case TrimSlot::Midpoint:
         MidpointExcess[TrimSlots[s].id] = value;
@@ -251,7 +252,7 @@ bool SurfaceMesher::refineTrim(SurfaceMesh& mesh)
       const TrimSample& mid = MidpointExcess[key];
       const double length = (mesh.points[a] - mesh.points[b]).norm();
       const double worst = std::max({ VertexExcess[a], VertexExcess[b], mid.excess });
-      if (length > TrimFinest * mid.scale && (centreNear || worst > -near * length))
+      if (length > TrimFinest * mid.spacing && (centreNear || worst > -near * length))
       {
         split.emplace(key, NoIndex);
       }
@@ -276,7 +277,7 @@ bool SurfaceMesher::refineTrim(SurfaceMesh& mesh)
     const auto b = static_cast<std::uint32_t>(key & 0xffffffffu);
     split[key] = addVertexOnEdge(mesh, a, b, 0.5);
     VertexExcess.push_back(MidpointExcess[key].excess);
-    VertexScale.push_back(MidpointExcess[key].scale);
+    VertexSpacing.push_back(MidpointExcess[key].spacing);
   }
   // Every triangle with a split edge (also one whose own samples were settled) is cut into two,
   // three or four; its pieces are sampled at the next level.
@@ -392,7 +393,7 @@ void SurfaceMesher::keepShallowExcess(const SurfaceMesh& mesh)
     for (std::size_t r = 0; r < region.size(); ++r)
     {
       const std::uint32_t v = region[r];
-      deep = deep || VertexExcess[v] > TrimMargin * VertexScale[v];
+      deep = deep || VertexExcess[v] > TrimMargin * VertexSpacing[v];
       for (std::uint32_t e = first[v]; e < first[v + 1]; ++e)
       {
         if (!seen[linked[e]])
@@ -475,7 +476,7 @@ void SurfaceMesher::cutFar(SurfaceMesh& mesh)
   // Cut-off corners can leave islands: the small-piece rule of stage 6 applies again.
   keepLargePieces(mesh, triangles);
   VertexExcess = {};
-  VertexScale = {};
+  VertexSpacing = {};
   CloudSpacing = {};
   MidpointExcess = {};
   TrimActive = {};
