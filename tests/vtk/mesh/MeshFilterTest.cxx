@@ -319,6 +319,14 @@ TEST(MeshFilterBadInput, ErrorsAndFlags)
     ASSERT_EQ(a[1], b[1]);
     ASSERT_EQ(a[2], b[2]);
   }
+  // A negative TrimDistance is clamped to 0, no trim: the untrimmed mesh, recorded as 0.
+  mesher->SetTrimDistance(-1.0);
+  EXPECT_EQ(mesher->GetTrimDistance(), 0.0);
+  vtkSmartPointer<vtkPolyData> untrimmed = Mesh(Sphere(), 1.0, mesher);
+  EXPECT_EQ(untrimmed->GetNumberOfPoints(), clean->GetNumberOfPoints());
+  vtkDataArray* recorded = untrimmed->GetFieldData()->GetArray("TrimDistance");
+  ASSERT_NE(recorded, nullptr);
+  EXPECT_EQ(recorded->GetTuple1(0), 0.0);
 }
 
 TEST(MeshFilter, StanfordBunny)
