@@ -276,7 +276,11 @@ int vtkPointSetSurfaceMesher::RequestData(
   options.domain.maxBorderOffset = this->MaxBorderOffset != BORDER_OFFSET_AUTOMATIC ? std::max(0.0, this->MaxBorderOffset)
     : pointScales                                                                    ? 0.6
                                                                                      : 0.0;
-  options.trimDistance = this->TrimDistance;
+  // The automatic trim (see the header) was measured on depth frames; it needs the whole cloud, so
+  // a run with ghost points (GhostMargin > 0, also in one process: the same mesh) goes without.
+  options.trimDistance = this->TrimDistance >= 0.0 ? this->TrimDistance
+    : pointScales && this->GhostMargin == 0.0                         ? 2.5
+                                                                      : 0.0;
   this->UsedMaxDistance = options.domain.maxDistance;
   this->UsedMaxBorderOffset = options.domain.maxBorderOffset;
   // In a distributed run every rank builds the same band; each computes its block of the corners,
@@ -291,7 +295,7 @@ int vtkPointSetSurfaceMesher::RequestData(
     if (run.HasGhosts() && options.trimDistance > 0.0)
     {
       vtkErrorMacro("TrimDistance needs every cloud point's neighbours, which a distributed run with ghost points "
-                    "does not have: set GhostMargin to 0 (the gathered cloud) or TrimDistance to 0");
+                    "does not have: set GhostMargin to 0 (the gathered cloud) or TrimDistance to 0 or automatic (-1)");
       failed = true;
     }
     else if (run.HasGhosts())
@@ -323,6 +327,7 @@ int vtkPointSetSurfaceMesher::RequestData(
   {
     return 1; // aborted: empty output
   }
+  this->UsedTrimDistance = mesh->dimension == 3 ? options.trimDistance : 0.0; // no trim in 2D
   const auto start = std::chrono::steady_clock::now();
   WriteMesh(*mesh, output);
   const double write = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -338,7 +343,7 @@ int vtkPointSetSurfaceMesher::RequestData(
   for (const auto& entry : { std::make_pair("CellSize", this->CellSize), std::make_pair("Band", this->Band),
          std::make_pair("MaxDistance", this->UsedMaxDistance),
          std::make_pair("MaxBorderOffset", this->UsedMaxBorderOffset),
-         std::make_pair("TrimDistance", this->TrimDistance) })
+         std::make_pair("TrimDistance", this->UsedTrimDistance) })
   {
     auto a = pss_vtk::NewArray<vtkDoubleArray>(entry.first, 1, 1);
     a->SetValue(0, entry.second);
@@ -438,7 +443,7 @@ void vtkPointSetSurfaceMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaxHoleEdges: " << this->MaxHoleEdges << "\n";
   os << indent << "MinPieceArea: " << this->MinPieceArea << "\n";
   os << indent << "MaxBorderOffset: " << this->MaxBorderOffset << " (used " << this->UsedMaxBorderOffset << ")\n";
-  os << indent << "TrimDistance: " << this->TrimDistance << "\n";
+  os << indent << "TrimDistance: " << this->TrimDistance << " (used " << this->UsedTrimDistance << ")\n";
   os << indent << "CoveredPieceArea: " << this->CoveredPieceArea << "\n";
   os << indent << "MaximumNumberOfBandCells: " << this->MaximumNumberOfBandCells << "\n";
   os << indent << "GhostMargin: " << this->GhostMargin << "\n";

@@ -18,7 +18,7 @@
  * `DistanceToCloud`, `NormalAngle`, `StartAngle`, `StartStability` (the classifier's evidence for
  * the crossing that became the vertex), `Displacement` (from the grid crossing to the vertex),
  * `Iterations`, `StopReason`. Field data: `ScaleFactor`, `Dimension`, `CellSize`, `Band`,
- * `MaxDistance` and `MaxBorderOffset` (as applied, automatic values resolved), `Procedure` and the
+ * `MaxDistance`, `MaxBorderOffset` and `TrimDistance` (as applied, automatic values resolved), `Procedure` and the
  * counts `BandCells`, `CellLevels`, `HangingVertices` (adaptive cells), `GridVertices`, `Crossings`, `DroppedVertices`, `MaximumCrossings`,
  * `SeamSimplices`, `FoldedTriangles`, `UndefinedGridVertices` (why parts are missing),
  * `RemovedPieces`, `CoveredPieces`, `ClosedHoles`, `Components`, `BoundaryEdges`,
@@ -163,28 +163,33 @@ public:
 
   ///@{
   /**
-   * An optional last stage (3D): the mesh is cut where it runs farther than TrimDistance local
-   * point spacings from every cloud point (the spacing of the nearest point: sqrt(pi / 12) times
-   * its distance to its 12th nearest neighbour, median-smoothed; a square grid of spacing s gives
-   * 1.02 s). Each vertex passed MaxDistance, but a triangle can span a gap of the scan, where a
-   * smoothed h_i is wider than the spacing. The cut follows the line where the distance crosses
-   * TrimDistance spacings (on edges split down to one spacing near it), leaves a region that
-   * exceeds it nowhere by 0.1 spacing (a pinhole), and removes the pieces below MinPieceArea it
-   * leaves. 0 (the default) turns it off. On the Kinect frames 2.5 takes the mesh's area farther
-   * than three spacings from the scan from 0.2% to 0.0%, but on a depth frame it also cuts seen
-   * surfaces where the sensor's quantized depths put the points in stripes farther apart than
-   * that (a face seen at a grazing angle): it is not the default (docs/mesh.md). Refused with
-   * ghost points (a distributed run on pieces): the spacing needs each point's neighbours.
+   * The last stage (3D): the mesh is cut back where, from its border, it runs farther than
+   * TrimDistance local point spacings from every cloud point (the spacing of the nearest point:
+   * sqrt(pi / 12) times its distance to its 12th nearest neighbour, median-smoothed; a square grid
+   * of spacing s gives 1.02 s). Each vertex passed MaxDistance, but the mesh can run on past the
+   * edge of the data, where a smoothed h_i is wider than the spacing. The cut follows the line
+   * where the distance crosses TrimDistance spacings (on edges split down to one spacing near it)
+   * and removes the pieces below MinPieceArea it leaves. A far region that does not reach the
+   * mesh's border (its outline or a hole's) is kept: the data all around supports it (on a depth
+   * frame, surface seen at a grazing angle between the stripes of its quantized depths), and
+   * cutting it would open a hole in a seen surface; so is one that exceeds the distance nowhere by
+   * 0.1 spacing. TRIM_DISTANCE_AUTOMATIC (-1, the default; any negative value) takes 2.5 with a scale per point and
+   * GhostMargin 0, and turns the trim off otherwise (one h: an even cloud's mesh as before; ghost
+   * points: the spacing needs each point's neighbours). 0 turns it off. On the shared Kinect
+   * frames 2.5 halves the mesh's area farther than three spacings from the scan (docs/mesh.md).
+   * A TrimDistance > 0 with ghost points in a distributed run is refused.
    */
-  vtkSetClampMacro(TrimDistance, double, 0.0, 1e6);
+  static constexpr double TRIM_DISTANCE_AUTOMATIC = -1.0;
+  vtkSetClampMacro(TrimDistance, double, TRIM_DISTANCE_AUTOMATIC, 1e6);
   vtkGetMacro(TrimDistance, double);
   ///@}
 
   ///@{
-  /// The distance and border criteria the last run applied, the automatic values resolved (also
-  /// the output's field data MaxDistance and MaxBorderOffset; TrimDistance is recorded as well).
+  /// The distance, border and trim criteria the last run applied, the automatic values resolved
+  /// (also the output's field data MaxDistance, MaxBorderOffset and TrimDistance; 0: no trim).
   vtkGetMacro(UsedMaxDistance, double);
   vtkGetMacro(UsedMaxBorderOffset, double);
+  vtkGetMacro(UsedTrimDistance, double);
   ///@}
 
   ///@{
@@ -303,7 +308,8 @@ protected:
   int UsedProcedure = EXTREMAL;
   double UsedMaxDistance = 1.0;
   double UsedMaxBorderOffset = 0.0;
-  double TrimDistance = 0.0;
+  double TrimDistance = TRIM_DISTANCE_AUTOMATIC;
+  double UsedTrimDistance = 0.0;
   double MaxDistance = MAX_DISTANCE_AUTOMATIC;
   double MaxNormalAngle = 30.0;
   double MaxBorderOffset = BORDER_OFFSET_AUTOMATIC;

@@ -293,7 +293,7 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
          point_scale_multiplier=3.0, scale_spread=3.0, dimension="auto", cutoff=3.0, quadrature=6, delta_lattice=0.5,
          min_stability=1e-5, normals=None, cell=1.0, band=1.0, adaptive_cells=True, project_vertices=True, procedure="automatic",
          max_distance=-1.0,
-         max_normal_angle=30.0, max_border_offset=-1.0, trim_distance=0.0, max_vertex_travel=2.0, max_seam_angle=80.0, max_fold_angle=60.0,
+         max_normal_angle=30.0, max_border_offset=-1.0, trim_distance=-1.0, max_vertex_travel=2.0, max_seam_angle=80.0, max_fold_angle=60.0,
          max_hole_edges=100, min_piece_area=10.0, covered_piece_area=10.0, max_band_cells=1 << 24, threads=0, progress=None,
          nonfinite="raise", as_polydata=False):
     """The surface as a triangle mesh (segments in 2D), only where it is defined
@@ -325,8 +325,9 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
         this many local h from the vertex along the surface (0.56 at a straight border; 0 off;
         -1, the default: 0.6 with a scale per point, off with one h).
     trim_distance : float
-        3D: cut the mesh where it runs farther than this many local point spacings from every
-        cloud point (0, the default: off; see docs/mesh.md for what 2.5 does to a depth frame).
+        3D: cut the mesh back where, from its border, it runs farther than this many local point
+        spacings from every cloud point (0 off; -1, the default: 2.5 with a scale per point, off
+        with one h; docs/mesh.md).
     max_vertex_travel : float
         Drop crossings whose projection moves farther, in cells (0.1 to 100).
     max_seam_angle, max_fold_angle : float

@@ -54,17 +54,20 @@
  *    even when every closing folds (by the fan, else the least-area triangulation): its border was
  *    turned inside out by the projection or twisted by a pleat of the contour, and any closing
  *    lies nearer the surface than the hole; a smaller piece's outline is left alone.
- * 8. trim (3D, when trimDistance > 0): every vertex passed the distance criterion, but a
- *    triangle can still span a gap of the scan, where a smoothed h_i is wider than the spacing.
- *    Every cloud point's local spacing is measured (two parallel passes), then the excess of the
- *    distance to the nearest cloud point over trimDistance times that point's spacing is sampled
- *    at the vertices, the edges' midpoints and the triangles' centres; edges longer than one
- *    spacing with a sample near the cut are split at their midpoints (the decision is the edge's
- *    own, so both of its triangles split it and no crack opens), level by level (at most
+ * 8. trim (3D, when trimDistance > 0): every vertex passed the distance criterion, but the mesh
+ *    can still run on past the edge of the scan's data, where a smoothed h_i is wider than the
+ *    spacing. Every cloud point's local spacing is measured (two parallel passes), then the excess
+ *    of the distance to the nearest cloud point over trimDistance times that point's spacing is
+ *    sampled at the vertices, the edges' midpoints and the triangles' centres; edges longer than
+ *    one spacing with a sample near the cut are split at their midpoints (the decision is the
+ *    edge's own, so both of its triangles split it and no crack opens), level by level (at most
  *    TrimLevels); then each triangle is cut along the line where the excess, linear along its
- *    edges, changes sign. A region beyond the distance that nowhere exceeds it by 0.1 spacing is
- *    kept (its cut would be a pinhole), and pieces below minPieceArea that the cut leaves are
- *    removed. The new vertices lie on the flat triangles, so the trim moves no surface.
+ *    edges, changes sign. Only regions beyond the distance that reach the mesh's border (its
+ *    outline or a hole's) are cut: an enclosed one is surface that the data all around supports
+ *    (on a depth frame, between the stripes of its quantized depths, where a cut would open a
+ *    hole in a seen surface), and one that nowhere exceeds the distance by 0.1 spacing would be a
+ *    nick. Pieces below minPieceArea that the cut leaves are removed. The new vertices lie on the
+ *    flat triangles, so the trim moves no surface.
  * Every stage is deterministic: the result does not depend on the number of threads.
  */
 #pragma once
@@ -101,9 +104,10 @@ struct MeshOptions
   /// 3D: connected pieces of a smaller area, in units of h^2, are removed (islands that a few
   /// stray points define; on the bunny scans 10 leaves one piece). 0 keeps every piece.
   double minPieceArea = 10.0;
-  /// 3D: the mesh is cut where it runs farther than this many local point spacings (of the
-  /// nearest cloud point, pss::smoothedSpacing) from every cloud point (stage 8). 0 (the
-  /// default) turns the trim off. The mesher must hold the whole cloud (no ghost points).
+  /// 3D: the mesh is cut back where, from its border, it runs farther than this many local point
+  /// spacings (of the nearest cloud point, pss::smoothedSpacing) from every cloud point (stage 8).
+  /// 0 (the default here; the VTK filter turns it on for a scale per point) turns the trim off.
+  /// The mesher must hold the whole cloud (no ghost points).
   double trimDistance = 0.0;
   /// 3D: pieces smaller than this, in units of h^2, other than the largest, are removed when every
   /// vertex of theirs lies within 3 h of the largest piece's interior (its nearest vertex of the
@@ -363,9 +367,11 @@ private:
   void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c, const Vec3& towardPositive);
   /// Keeps the @p triangles of pieces of at least minPieceArea h^2 as @p mesh's, without the unused vertices.
   void keepLargePieces(SurfaceMesh& mesh, const std::vector<std::array<std::uint32_t, 3>>& triangles);
-  /// Sets the excess of every connected region beyond the trim distance that nowhere exceeds it
-  /// by TrimMargin local spacings to 0 (kept: a pinhole where a gap is just wider than the distance).
-  void keepShallowExcess(const SurfaceMesh& mesh);
+  /// Sets to 0 the excess of every connected region beyond the trim distance that the cut spares:
+  /// one without a vertex on the mesh's border (cutting it would open a hole in surface that the
+  /// data all around supports) and one that nowhere exceeds the distance by TrimMargin local
+  /// spacings (a nick where a gap is just wider than the distance).
+  void spareEnclosedAndShallowRegions(const SurfaceMesh& mesh);
   /// Queues the samples of the trim's active triangles: unsettled vertices, edge midpoints, centres.
   void queueTrimSamples(const SurfaceMesh& mesh);
   /// True when a cell of normal @p face (unnormalized) is within maxFoldAngle of @p vertexNormals' sum.

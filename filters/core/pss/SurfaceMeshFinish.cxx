@@ -106,13 +106,7 @@ std::vector<char> coveredPieces(const std::vector<std::array<std::uint32_t, 3>>&
   {
     used[t[0]] = used[t[1]] = used[t[2]] = 1;
   }
-  std::vector<char> border(points.size(), 0);
-  forEachEdge(edgesOf(triangles, points.size()), [&](std::uint32_t a, std::uint32_t b, std::uint32_t sides, bool) {
-    if (sides == 1)
-    {
-      border[a] = border[b] = 1;
-    }
-  });
+  const std::vector<char> border = borderVertices(triangles, points.size());
   // The largest piece's vertices in a k-d tree, to find each candidate's nearest.
   std::vector<Vec3> largestPoints;
   std::vector<std::uint32_t> largestVertex; // input position in largestPoints -> mesh vertex
@@ -160,6 +154,18 @@ std::vector<char> coveredPieces(const std::vector<std::array<std::uint32_t, 3>>&
 }
 
 } // namespace
+
+std::vector<char> piece_utils::borderVertices(const std::vector<std::array<std::uint32_t, 3>>& triangles, std::size_t vertices)
+{
+  std::vector<char> border(vertices, 0);
+  forEachEdge(edgesOf(triangles, vertices), [&](std::uint32_t a, std::uint32_t b, std::uint32_t sides, bool) {
+    if (sides == 1)
+    {
+      border[a] = border[b] = 1;
+    }
+  });
+  return border;
+}
 
 void countTopology(SurfaceMesh& mesh)
 {

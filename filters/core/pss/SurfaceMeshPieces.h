@@ -143,5 +143,8 @@ inline std::vector<char> largePieces(const std::vector<std::array<std::uint32_t,
   return large;
 }
 
+/// Per vertex: whether it is an end of a border edge of @p triangles (an edge of one triangle).
+std::vector<char> borderVertices(const std::vector<std::array<std::uint32_t, 3>>& triangles, std::size_t vertices);
+
 } // namespace piece_utils
 } // namespace pss

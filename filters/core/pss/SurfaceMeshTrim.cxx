@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Stage 8 of the mesher (SurfaceMesh.h), optional: a distance criterion between the vertices. A
-// triangle can span a gap of the scan although each of its vertices lies near a cloud point (a
-// smoothed h_i exceeds the spacing where the density changes); the trim cuts the mesh where it
-// runs farther than trimDistance local point spacings from the cloud.
+// Stage 8 of the mesher (SurfaceMesh.h): a distance criterion between the vertices. A triangle
+// can run on past the scan's edge although each of its vertices lies near a cloud point (a
+// smoothed h_i exceeds the spacing where the density changes); the trim cuts the mesh back where,
+// from its border, it runs farther than trimDistance local point spacings from the cloud.
 #include "pss/SurfaceMesh.h"
 #include "pss/SurfaceMeshPieces.h"
 
@@ -347,7 +347,7 @@ bool SurfaceMesher::refineTrim(SurfaceMesh& mesh)
   return true;
 }
 
-void SurfaceMesher::keepShallowExcess(const SurfaceMesh& mesh)
+void SurfaceMesher::spareEnclosedAndShallowRegions(const SurfaceMesh& mesh)
 {
   // The vertices beyond the trim distance, linked by the edges between two of them.
   const std::size_t nv = mesh.points.size();
@@ -377,8 +377,9 @@ void SurfaceMesher::keepShallowExcess(const SurfaceMesh& mesh)
     linked[next[a]++] = b;
     linked[next[b]++] = a;
   });
-  // Each region, flooded from its lowest vertex: kept (its excess set to 0) when it nowhere
-  // reaches TrimMargin local h beyond the trim distance.
+  // Each region, flooded from its lowest vertex: kept (its excess set to 0) when it has no vertex
+  // on the border or nowhere reaches TrimMargin local spacings beyond the trim distance.
+  const std::vector<char> border = piece_utils::borderVertices(mesh.triangles, nv);
   std::vector<char> seen(nv, 0);
   std::vector<std::uint32_t> region;
   for (std::uint32_t seed = 0; seed < nv; ++seed)
@@ -390,10 +391,12 @@ void SurfaceMesher::keepShallowExcess(const SurfaceMesh& mesh)
     region.assign(1, seed);
     seen[seed] = 1;
     bool deep = false;
+    bool open = false;
     for (std::size_t r = 0; r < region.size(); ++r)
     {
       const std::uint32_t v = region[r];
       deep = deep || VertexExcess[v] > TrimMargin * VertexSpacing[v];
+      open = open || border[v] != 0;
       for (std::uint32_t e = first[v]; e < first[v + 1]; ++e)
       {
         if (!seen[linked[e]])
@@ -403,7 +406,7 @@ void SurfaceMesher::keepShallowExcess(const SurfaceMesh& mesh)
         }
       }
     }
-    if (!deep)
+    if (!deep || !open)
     {
       for (const std::uint32_t v : region)
       {
@@ -419,7 +422,7 @@ void SurfaceMesher::cutFar(SurfaceMesh& mesh)
   {
     return;
   }
-  keepShallowExcess(mesh);
+  spareEnclosedAndShallowRegions(mesh);
   // Linear in the excess along each edge: the cut crosses an edge once, where both of its
   // triangles put it.
   std::unordered_map<std::uint64_t, std::uint32_t> cut;

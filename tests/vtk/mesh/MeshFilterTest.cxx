@@ -173,6 +173,9 @@ TEST(MeshFilter, AutomaticProcedureFollowsTheScale)
     auto out = vtkSmartPointer<vtkPolyData>::New();
     out->ShallowCopy(mesher->GetOutput());
     EXPECT_EQ(FieldValue(out, "Procedure"), static_cast<double>(used));
+    // The automatic trim: 2.5 local spacings with a scale per point, none with one h.
+    EXPECT_EQ(FieldValue(out, "TrimDistance"), pointScales ? 2.5 : 0.0);
+    EXPECT_EQ(mesher->GetUsedTrimDistance(), pointScales ? 2.5 : 0.0);
     return out;
   };
   const int com = vtkPointSetSurface::CENTER_OF_MASS;
@@ -200,6 +203,16 @@ TEST(MeshFilter, AutomaticProcedureFollowsTheScale)
 
   meshWith(vtkPointSetSurfaceMesher::AUTOMATIC, true, vtkPointSetSurface::NORMALIZED_MLS, used);
   EXPECT_EQ(used, vtkPointSetSurfaceMesher::EXTREMAL) << "another definition with a scale per point";
+
+  // With ghost points (GhostMargin > 0, also in one process) the automatic trim is off: a
+  // distributed run could not measure the spacing, and the mesh must not depend on the ranks.
+  vtkNew<vtkPointSetSurfaceMesher> ghosts;
+  ghosts->GetSurface()->SetPointScales(vtkPointSetSurface::POINT_SCALES_ESTIMATED);
+  ghosts->SetGhostMargin(2.0);
+  ghosts->SetInputData(cloud);
+  ghosts->Update();
+  EXPECT_EQ(ghosts->GetUsedTrimDistance(), 0.0);
+  EXPECT_EQ(FieldValue(ghosts->GetOutput(), "TrimDistance"), 0.0);
 }
 
 TEST(MeshFilter, SameOnOneAndTwoThreads)
@@ -319,9 +332,10 @@ TEST(MeshFilterBadInput, ErrorsAndFlags)
     ASSERT_EQ(a[1], b[1]);
     ASSERT_EQ(a[2], b[2]);
   }
-  // A negative TrimDistance is clamped to 0, no trim: the untrimmed mesh, recorded as 0.
-  mesher->SetTrimDistance(-1.0);
-  EXPECT_EQ(mesher->GetTrimDistance(), 0.0);
+  // A TrimDistance below -1 is clamped to -1 (automatic), which with one h is no trim: the
+  // untrimmed mesh, recorded as 0.
+  mesher->SetTrimDistance(-5.0);
+  EXPECT_EQ(mesher->GetTrimDistance(), vtkPointSetSurfaceMesher::TRIM_DISTANCE_AUTOMATIC);
   vtkSmartPointer<vtkPolyData> untrimmed = Mesh(Sphere(), 1.0, mesher);
   EXPECT_EQ(untrimmed->GetNumberOfPoints(), clean->GetNumberOfPoints());
   vtkDataArray* recorded = untrimmed->GetFieldData()->GetArray("TrimDistance");
