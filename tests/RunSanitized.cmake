@@ -1,7 +1,9 @@
 # A sanitized copy of the project, in two steps that ctest runs as separate tests
 # (tests/CMakeLists.txt), so the suites of one copy run side by side once it is built:
 #   cmake -DMODE=build -DSANITIZER=address|thread -DSOURCE_DIR=... -DBINARY_DIR=... -DTARGETS=a,b [-DLAUNCHER=ccache] -P RunSanitized.cmake
-#   cmake -DMODE=run   -DSANITIZER=address|thread -DBINARY_DIR=... -DTARGETS=a -DFILTER=... -P RunSanitized.cmake
+#   cmake -DMODE=run   -DSANITIZER=address|thread -DBINARY_DIR=... -DTARGETS=a -DFILTER=... [-DSHARD=i/n] -P RunSanitized.cmake
+# SHARD runs the i-th of n shards of the suite (googletest's own sharding, 0-based), so that ctest
+# can run a long suite's shards side by side.
 # address: AddressSanitizer + UndefinedBehaviorSanitizer (the asan preset: PSS_SANITIZE);
 # thread: ThreadSanitizer (the tsan preset: compiler and linker flags of the whole copy);
 # none with -DPRESET=clang: the plain suites built with clang (the clang stage).
@@ -70,6 +72,13 @@ if(MODE STREQUAL "build")
   return()
 endif()
 
+if(DEFINED SHARD)
+  string(REPLACE "/" ";" shard "${SHARD}")
+  list(GET shard 0 index)
+  list(GET shard 1 count)
+  set(ENV{GTEST_SHARD_INDEX} "${index}")
+  set(ENV{GTEST_TOTAL_SHARDS} "${count}")
+endif()
 foreach(target IN LISTS TARGETS)
   execute_process(
     COMMAND "${BINARY_DIR}/bin/${target}" "--gtest_filter=${FILTER}"
