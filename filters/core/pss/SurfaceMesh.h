@@ -450,7 +450,7 @@ private:
   static constexpr std::size_t SpacingNeighbourCount = 12;
   int SpacingPass = 0;
   std::vector<double> RawSpacing;   ///< per cloud point (index order), the first pass
-  std::vector<double> CloudSpacing; ///< the smoothed spacing, the second
+  std::vector<double> CloudSpacing; ///< the smoothed spacing, the second (the typical h where it is 0)
   std::vector<std::uint32_t> SpacingNeighbours; ///< SpacingNeighbourCount per cloud point
   std::vector<Vec3> TrimSamples;
   std::vector<TrimSlot> TrimSlots;

@@ -129,6 +129,11 @@ bool SurfaceMesher::nextSpacingPass()
   }
   RawSpacing = {};
   SpacingNeighbours = {};
+  // Coincident points (a dozen duplicates) have no spacing of their own: the typical h stands in.
+  for (double& spacing : CloudSpacing)
+  {
+    spacing = spacing > 0.0 ? spacing : Frame.h;
+  }
   return false;
 }
 
@@ -185,8 +190,7 @@ void SurfaceMesher::evaluateTrimSample(std::size_t i, Workspace& ws)
   const PointIndex& index = Surface->index();
   const auto [nearest, sqDist] = index.nearest(TrimSamples[i]);
   noteReach(index, index.restrict(TrimSamples[i]), sqDist, ws);
-  // Coincident points (a dozen duplicates) have no spacing of their own: the typical h stands in.
-  const double local = CloudSpacing[nearest] > 0.0 ? CloudSpacing[nearest] : Frame.h;
+  const double local = CloudSpacing[nearest];
   TrimValues[2 * i] = std::sqrt(sqDist) - Options.trimDistance * local;
   TrimValues[2 * i + 1] = local;
 }
