@@ -646,8 +646,8 @@ const char* const MainHelp = "usage: pss SUBCOMMAND [options]   (pss SUBCOMMAND 
                              "\n"
                              "Files are read and written by extension: .vtp .vtu .vti .ply .pcd .csv .xyz (.stl .obj: written only)\n";
 
-// `pss --version`: what a bug report needs to say which build ran, including the copy of the
-// vector kernels the dispatcher chose on this CPU (PSS_SIMD=baseline forces the baseline one).
+// `pss --version`: what a bug report needs to say which build ran, including the
+// copy of the core the loader took, or in the baseline copy its vector kernels (docs/development.md).
 int Version()
 {
   std::cout << "pss " << PSS_VERSION << " (PointSetSurfaces)\n"

@@ -1,5 +1,6 @@
-# cmake --install: the core (static library, headers, PointSetSurfacesCoreTargets.cmake), the pss
-# tool, and the package files that make find_package(PointSetSurfaces) work downstream:
+# cmake --install: the core (its two shared copies, or one static library; its headers and
+# PointSetSurfacesCoreTargets.cmake), the pss tool, and the package files that make
+# find_package(PointSetSurfaces) work downstream:
 #
 #   find_package(PointSetSurfaces REQUIRED)                   # Core, and Filters when it was built
 #   find_package(PointSetSurfaces REQUIRED COMPONENTS Core)   # Eigen and nanoflann only, no VTK
@@ -12,13 +13,22 @@ include(CMakePackageConfigHelpers)
 set_target_properties(PointSetSurfacesCore PROPERTIES EXPORT_NAME Core)
 target_include_directories(PointSetSurfacesCore PUBLIC $<INSTALL_INTERFACE:${PSS_INSTALL_INCLUDEDIR}>)
 install(TARGETS PointSetSurfacesCore EXPORT PointSetSurfacesCore
-  ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT development)
+  ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT development
+  LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT runtime)
+if(PSS_CORE_X86_64_V3)
+  # Where glibc's loader looks for the x86-64-v3 copy of a library it finds in LIBDIR.
+  install(TARGETS PointSetSurfacesCoreX86_64_v3
+    LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}/glibc-hwcaps/x86-64-v3" COMPONENT runtime)
+endif()
 file(GLOB pss_core_headers "${PROJECT_SOURCE_DIR}/filters/core/pss/*.h")
 list(FILTER pss_core_headers EXCLUDE REGEX "/NanoflannInternals\\.h$")  # private to PointIndex.cxx
 list(FILTER pss_core_headers EXCLUDE REGEX "/KernelDispatch\\.h$")  # private to the kernels' files
 install(FILES ${pss_core_headers} DESTINATION "${PSS_INSTALL_INCLUDEDIR}/pss" COMPONENT development)
 install(EXPORT PointSetSurfacesCore NAMESPACE PointSetSurfaces:: FILE PointSetSurfacesCoreTargets.cmake
   DESTINATION "${PSS_INSTALL_CMAKEDIR}" COMPONENT development)
+# The build tree's export of the VTK module names the (shared) core too.
+export(EXPORT PointSetSurfacesCore NAMESPACE PointSetSurfaces::
+  FILE "${PROJECT_BINARY_DIR}/install-package/PointSetSurfacesCoreTargets.cmake")
 
 if(PSS_ENABLE_VTK)
   # The pss tool finds libPointSetSurfacesFilters.so next to it, in ../LIBDIR.

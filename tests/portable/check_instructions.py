@@ -3,11 +3,13 @@
 AVX, AVX2, AVX-512) outside the functions allowed to (the dispatched kernels' AVX2 copies,
 pss/KernelDispatch.cxx), so that the default build loads and runs on any x86-64 CPU (the baseline: SSE2).
 
-    check_instructions.py [--objdump objdump] [--allow REGEX] [--kernels FILE]... FILE...
+    check_instructions.py [--objdump objdump] [--allow REGEX] [--kernels FILE]... [--v3 FILE]... FILE...
 
 FILE may be an executable, a shared library or a static archive. A file given with --kernels is
 checked too, and must also hold the allowed functions' AVX instructions (the dispatched copies
-must exist where the core is linked in). Exit 0 when every file passes.
+must exist where the core is linked in). A file given with --v3 (the core's copy for x86-64-v3)
+is not checked for AVX; it must hold fused multiply-adds (vfmadd...), the proof that it was
+compiled for x86-64-v3. Exit 0 when every file passes.
 """
 import argparse
 import re
@@ -43,10 +45,18 @@ def main():
     parser.add_argument("--objdump", default="objdump")
     parser.add_argument("--allow", default=r"Avx2\b", help="regular expression on (demangled) function names")
     parser.add_argument("--kernels", action="append", default=[], help="a file that must hold the AVX2 copies")
+    parser.add_argument("--v3", action="append", default=[], help="the core's copy for x86-64-v3")
     parser.add_argument("files", nargs="*")
     args = parser.parse_args()
     allow = re.compile(args.allow)
     failed = False
+    for path in args.v3:
+        fused = sum(1 for _, instruction in avx_instructions(args.objdump, path) if instruction.startswith("vfm"))
+        if fused:
+            print("ok   %s: %d fused multiply-adds (x86-64-v3)" % (path, fused))
+        else:
+            failed = True
+            print("FAIL %s: no fused multiply-add: not compiled for x86-64-v3" % path)
     for path in args.kernels + args.files:
         offenders = {}
         allowed = set()

@@ -154,9 +154,12 @@ void gatherOrientedNeighbourhood(const PointIndex& index, const SurfaceParameter
  */
 void expNonPositive(const double* x, double* out, Eigen::Index n);
 
-/// The instruction set of the vector kernels in use: "avx2" where the CPU has it, else "baseline"
-/// (x86-64's SSE2). Chosen at the first call; the environment variable PSS_SIMD=baseline forces
-/// "baseline". Both give bitwise the same results (see KernelDispatch.cxx).
+/// The instruction set the core runs: "x86-64-v3" when the loader took the core's copy for
+/// x86-64-v3 (AVX2 and FMA throughout; see filters/core/CMakeLists.txt); in the baseline copy
+/// that of its vector kernels, "avx2" where the CPU has it, else "baseline" (x86-64's SSE2),
+/// chosen at the first call (the environment variable PSS_SIMD=baseline forces "baseline"). The
+/// baseline copy's two give bitwise the same results; the x86-64-v3 copy fuses multiply-adds, so
+/// its results differ from them in the last bits (see KernelDispatch.cxx).
 const char* kernelInstructionSet();
 
 /**

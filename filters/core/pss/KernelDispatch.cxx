@@ -11,7 +11,8 @@
 // the CPU has it, unless the environment variable PSS_SIMD=baseline forces the baseline copy.
 // Both copies compute with vectors of four doubles (two SSE2 registers on the baseline) and no
 // fused multiply-add, so they give bitwise the same results; only the speed differs. A build
-// for the compiling machine (PSS_NATIVE_ARCH, -march=native) compiles both for that machine.
+// for the compiling machine (PSS_NATIVE_ARCH, -march=native) compiles both for that machine. The
+// core's copy for x86-64-v3 (PSS_CORE_COPY_X86_64_V3) has no dispatch: one copy, with FMA.
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
 #define PSS_KERNEL_DISPATCH 1
 #include <immintrin.h>
@@ -135,11 +136,13 @@ PSS_KERNEL_INLINE Eigen::Index compactTail(const double* px, const double* py, c
   return n;
 }
 
+#if !defined(PSS_CORE_COPY_X86_64_V3)
 Eigen::Index compactCandidatesBaseline(const double* px, const double* py, const double* pz, const double* sq,
   Eigen::Index m, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
 {
   return compactTail(px, py, pz, sq, 0, m, 0, origin, limit, minSq, nb);
 }
+#endif
 
 // The scaled candidates below @p bound (scaled squared distances), in order: their offsets,
 // squared distances, 1/h_i^2 and h_i, and in weight the exponent minScaled - scaled (<= 0) that
@@ -162,11 +165,13 @@ PSS_KERNEL_INLINE Eigen::Index compactScaledTail(const ScaledCandidates& c, Eige
   return n;
 }
 
+#if !defined(PSS_CORE_COPY_X86_64_V3)
 Eigen::Index compactScaledBaseline(
   const ScaledCandidates& c, const Vec3& origin, double bound, double minScaled, Neighbourhood& nb)
 {
   return compactScaledTail(c, 0, 0, origin, bound, minScaled, nb);
 }
+#endif
 
 #if PSS_KERNEL_DISPATCH
 // For each 4-bit mask of kept lanes, the permutation (pairs of 32-bit indices) that moves them to
@@ -403,6 +408,20 @@ PSS_KERNEL_INLINE void momentsBody(const double* weight, const double* dx, const
     momentsBody(w, dx, dy, dz, count, ax, ay, az, s);                                                            \
   }
 
+#if defined(PSS_CORE_COPY_X86_64_V3)
+// The core's copy for x86-64-v3 (filters/core/CMakeLists.txt): loaded only on CPUs with AVX2 and
+// FMA, so it has one copy of the kernels, compiled like the rest of it (with fused multiply-add).
+PSS_KERNEL_COPIES(V3, )
+
+} // namespace
+
+const KernelTable& kernels()
+{
+  static const KernelTable table{ "x86-64-v3", compactCandidatesAvx2, weightsV3, expV3, scatterV3, momentsV3,
+    compactScaledAvx2, scaledWeightsV3 };
+  return table;
+}
+#else
 PSS_KERNEL_COPIES(Baseline, )
 #if PSS_KERNEL_DISPATCH
 PSS_KERNEL_COPIES(Avx2, PSS_TARGET_AVX2)
@@ -433,6 +452,7 @@ const KernelTable& kernels()
   }();
   return table;
 }
+#endif
 
 } // namespace dispatch
 
