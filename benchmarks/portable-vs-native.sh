@@ -29,14 +29,14 @@ build() { # build NAME CMAKE_ARGS...
   local dir="$work/$1"; shift
   cmake -S "$here" -B "$dir" -DCMAKE_BUILD_TYPE=Release -DPSS_ENABLE_VTK=OFF -DPSS_BUILD_TESTING=OFF \
     -DPSS_BUILD_EXAMPLES=OFF "$@" > "$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; exit 1; }
-  cmake --build "$dir" --target pss-bench > "$dir.build.log" 2>&1 || { tail -40 "$dir.build.log"; exit 1; }
+  cmake --build "$dir" --target pss-bench -j "$(nproc)" > "$dir.build.log" 2>&1 || { tail -40 "$dir.build.log"; exit 1; }
 }
 mkdir -p "$work"
 echo "building the default and the native build in $work ..."
 build default -DPSS_NATIVE_ARCH=OFF
 build native -DPSS_NATIVE_ARCH=ON
 
-results="$work/results.txt"
+results="$work/results.$$.txt"
 : > "$results"
 for ((run = 1; run <= runs; ++run)); do
   for name in default native; do

@@ -31,20 +31,34 @@ for tool in pvbatch xvfb-run; do
 done
 mkdir -p "$out"
 
+# pvbatch under a virtual X server. `xvfb-run -a` now and then fails to reach the server it just
+# started ("bad X server connection") when runs follow each other closely: up to three tries.
+render() {
+  local attempt
+  for attempt in 1 2 3; do
+    if xvfb-run -a pvbatch "$@"; then
+      return 0
+    fi
+    echo "doc-images.sh: pvbatch under xvfb-run failed (try $attempt of 3)" >&2
+    sleep 2
+  done
+  return 1
+}
+
 echo "doc-images.sh: the main demo and its figures"
 "$demo" --out "$out/paper-figures" --renderer "$root/examples/pvpython/render_paper_figures.py"
 echo "doc-images.sh: the Figure 9 scene in ParaView"
-xvfb-run -a pvbatch "$root/examples/pvpython/figure9_10_scene.py" --plugin "$plugin" --size 960x640 \
+render "$root/examples/pvpython/figure9_10_scene.py" --plugin "$plugin" --size 960x640 \
   --output "$out/figure9_10_scene.png"
 echo "doc-images.sh: the bunny mesh in ParaView"
-xvfb-run -a pvbatch "$root/examples/pvpython/bunny_mesh.py" --plugin "$plugin" --size 960x480 \
+render "$root/examples/pvpython/bunny_mesh.py" --plugin "$plugin" --size 960x480 \
   --output "$out/bunny_mesh.png"
 scans="${PSS_SHARED_DATA_DIR:-$root/../shared/data}/real-scans"
 real_frames=(test9 region_growing_rgb_tutorial)
 if [ -f "$scans/test9.pcd" ]; then
   echo "doc-images.sh: real depth-camera frames meshed in ParaView"
   for frame in "${real_frames[@]}"; do
-    xvfb-run -a pvbatch "$root/examples/pvpython/real_frame_mesh.py" --plugin "$plugin" --size 1600x640 \
+    render "$root/examples/pvpython/real_frame_mesh.py" --plugin "$plugin" --size 1600x640 \
       --frame "$scans/$frame.pcd" --output "$out/real_frame_${frame%_rgb_tutorial}.png"
   done
 else

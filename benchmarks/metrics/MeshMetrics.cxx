@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -419,10 +420,15 @@ ReferenceFreeQuality MeasureWithoutReference(vtkPolyData* mesh, vtkPoints* cloud
   }
   const pss::PointIndex index(std::move(points), 3); // leaves non-finite points out
   q.cloudPoints = index.size();
-  const std::vector<double> spacing = pss::estimateLocalSpacings(index, std::max<std::size_t>(1, options.spacingNeighbours), 0);
+  std::vector<double> spacing = pss::estimateLocalSpacings(index, std::max<std::size_t>(1, options.spacingNeighbours), 0);
   {
-    std::vector<double> copy = spacing;
-    q.medianSpacing = Median(copy);
+    // A point among a dozen coincident copies has spacing 0; it takes the median of the others, as
+    // the mesher's trim takes the typical h there, or it would count as uncovered and make no
+    // sample near it.
+    std::vector<double> positive;
+    std::copy_if(spacing.begin(), spacing.end(), std::back_inserter(positive), [](double s) { return s > 0.0; });
+    q.medianSpacing = Median(positive);
+    std::replace_if(spacing.begin(), spacing.end(), [](double s) { return !(s > 0.0); }, q.medianSpacing);
   }
   const double infinity = std::numeric_limits<double>::infinity();
 

@@ -3,7 +3,8 @@
  * @file KernelDispatch.h
  * @brief Private to the core: the table of the vector kernels' copy in use (baseline SSE2 or
  *        AVX2, chosen at the first call), which KernelDispatch.cxx alone compiles, so that no
- *        other file of the core holds an AVX instruction.
+ *        other file of the core's baseline copy holds an AVX instruction. (The core's copy for
+ *        x86-64-v3 has one copy of the kernels, like the rest of it.)
  */
 #ifndef pss_KernelDispatch_h
 #define pss_KernelDispatch_h

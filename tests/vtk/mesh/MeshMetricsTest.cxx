@@ -6,7 +6,7 @@
  * where the scan has no data either (none), two separate squares (two pieces), a mesh lifted far
  * above its cloud (all of it far) and a mesh reaching past the edge of its cloud (the part beyond
  * three spacings far); the cloud points a big hole leaves farther than two spacings from the mesh
- * are uncovered.
+ * are uncovered; coincident cloud points (spacing 0) take the median spacing.
  */
 #include "MeshMetrics.h"
 
@@ -119,6 +119,26 @@ TEST(MeshMetricsWithoutReference, WholeGridIsClean)
   EXPECT_EQ(q.smallHoles, 0u);
   EXPECT_EQ(q.farShare, 0.0);
   EXPECT_EQ(q.uncoveredShare, 0.0);
+}
+
+// Thirteen coincident cloud points half a cell above the grid: their own spacing is 0 (their 12
+// nearest are each other), so they take the median spacing and count as covered (0.5 from the
+// mesh, within two spacings), as the scan's other points do.
+TEST(MeshMetricsWithoutReference, CoincidentPointsTakeTheMedianSpacing)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> triangles;
+  AddGrid(points, triangles, 30, 0.0, 0.0);
+  auto cloud = GridCloud(30);
+  for (int copy = 0; copy < 13; ++copy)
+  {
+    cloud->InsertNextPoint(15.5, 15.5, 0.5);
+  }
+  const auto q = Measure(Mesh(points, triangles), cloud);
+  EXPECT_EQ(q.cloudPoints, 31u * 31u + 13u);
+  EXPECT_DOUBLE_EQ(q.medianSpacing, kGridSpacing);
+  EXPECT_EQ(q.uncoveredShare, 0.0);
+  EXPECT_EQ(q.farShare, 0.0);
 }
 
 // A 2 x 2 cell hole (8 spacings around) where every cloud point is still there: one small hole.
