@@ -1,21 +1,21 @@
-# cmake -DPSS=build/bin/pss -DWORK=dir -DPYTHON=python3 -DCOPIES=ON|OFF -P CompareCopies.cmake:
+# cmake -DPSS=build/bin/pss -DWORK=dir -DPYTHON=python3 -DCOPIES=ON|OFF -DBASELINE_ENV=VAR=VALUE
+#   -P CompareCopies.cmake:
 # the pss tool projects the same cloud (three definitions) with each build of the core it has.
-# - The baseline copy (GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2 makes the loader take it) with its
-#   SSE2 kernels (PSS_SIMD=baseline) and with its AVX2 kernels: the same bytes (both compute with
-#   four-double vectors and no fused multiply-add, see pss/KernelDispatch.cxx).
+# - The baseline copy (the loader takes it with BASELINE_ENV: GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2)
+#   with its SSE2 kernels (PSS_SIMD=baseline) and with its AVX2 kernels: the same bytes (both
+#   compute with four-double vectors and no fused multiply-add, see pss/KernelDispatch.cxx).
 # - With COPIES (PSS_CORE_X86_64_V3): the loader takes the x86-64-v3 copy where the CPU runs it
 #   (`pss --version` says which), and its outputs agree with the baseline copy's to rounding:
 #   the same iterations, stop reasons and extremum types, values within 1e-10 (h for lengths;
 #   compare_outputs.py). Fused multiply-adds round differently, so the bytes differ.
 file(MAKE_DIRECTORY "${WORK}")
-set(baseline_env "GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2")
 execute_process(COMMAND "${PSS}" generate --scene sphere --dimension 3 --count 1500 --noise 0.3 --size 40
     -o "${WORK}/cloud.csv" RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "pss generate failed (exit ${rc})")
 endif()
 
-function(pss_run out)  # pss_run(OUTPUT_VARIABLE ENV... -- ARGS...)
+function(pss_run out)  # pss_run(OUT [ENV VAR=VALUE...] ARGS ARG...): runs pss, its output in OUT
   cmake_parse_arguments(PARSE_ARGV 1 run "" "" "ENV;ARGS")
   execute_process(COMMAND "${CMAKE_COMMAND}" -E env ${run_ENV} "${PSS}" ${run_ARGS}
     RESULT_VARIABLE rc OUTPUT_VARIABLE text ERROR_VARIABLE text)
@@ -25,7 +25,7 @@ function(pss_run out)  # pss_run(OUTPUT_VARIABLE ENV... -- ARGS...)
   set(${out} "${text}" PARENT_SCOPE)
 endfunction()
 
-pss_run(version ENV ${baseline_env} PSS_SIMD=baseline ARGS --version)
+pss_run(version ENV ${BASELINE_ENV} PSS_SIMD=baseline ARGS --version)
 if(NOT version MATCHES "SIMD baseline")
   message(FATAL_ERROR "the baseline copy with PSS_SIMD=baseline should run SSE2 kernels: ${version}")
 endif()
@@ -46,7 +46,7 @@ endif()
 foreach(variant com integral levin)
   set(args project "${WORK}/cloud.csv" --variant ${variant} --h 2 --threads 2)
   foreach(isa baseline avx2)
-    pss_run(ignored ENV ${baseline_env} PSS_SIMD=${isa} ARGS ${args} -o "${WORK}/${variant}-${isa}.csv")
+    pss_run(ignored ENV ${BASELINE_ENV} PSS_SIMD=${isa} ARGS ${args} -o "${WORK}/${variant}-${isa}.csv")
   endforeach()
   execute_process(COMMAND "${CMAKE_COMMAND}" -E compare_files "${WORK}/${variant}-baseline.csv" "${WORK}/${variant}-avx2.csv"
     RESULT_VARIABLE rc)
