@@ -597,7 +597,7 @@ int Mesh(const std::vector<std::string>& args)
     [&](const std::string& v) { mesher->SetMaxNormalAngle(pss_cli::ToDouble("max-normal-angle", v)); });
   t.Value("max-border-offset", "B", "outside the domain: past the cloud's border, B local h (0 off; default -1: 0.6 with point scales)",
     [&](const std::string& v) { mesher->SetMaxBorderOffset(pss_cli::ToDouble("max-border-offset", v)); });
-  t.Value("trim-distance", "T", "3D: cut the mesh back where, from its border, it runs farther than T local point spacings from the cloud (0 off; default -1: 2.5 with point scales, else off)",
+  t.Value("trim-distance", "T", "3D: cut the mesh back where it runs farther than T local point spacings from the cloud (0 off; default -1: 2.5 with point scales, else off)",
     [&](const std::string& v) { mesher->SetTrimDistance(pss_cli::ToDouble("trim-distance", v)); });
   t.Value("max-vertex-travel", "CELLS", "drop crossings whose projection moves farther (default 2)",
     [&](const std::string& v) { mesher->SetMaxVertexTravel(pss_cli::ToDouble("max-vertex-travel", v)); });

@@ -163,20 +163,21 @@ public:
 
   ///@{
   /**
-   * The last stage (3D): the mesh is cut back where, from its border, it runs farther than
-   * TrimDistance local point spacings from every cloud point (the spacing of the nearest point:
+   * The last stage (3D): the mesh is cut back where it runs farther than TrimDistance local
+   * point spacings from every cloud point (the spacing of the nearest point:
    * sqrt(pi / 12) times its distance to its 12th nearest neighbour, median-smoothed; a square grid
    * of spacing s gives 1.02 s). Each vertex passed MaxDistance, but the mesh can run on past the
    * edge of the data, where a smoothed h_i is wider than the spacing. The cut follows the line
-   * where the distance crosses TrimDistance spacings (on edges split down to one spacing near it)
-   * and removes the pieces below MinPieceArea it leaves. A far region that does not reach the
-   * mesh's border (its outline or a hole's) is kept: the data all around supports it (on a depth
-   * frame, surface seen at a grazing angle between the stripes of its quantized depths), and
-   * cutting it would open a hole in a seen surface; so is one that exceeds the distance nowhere by
-   * 0.1 spacing. TRIM_DISTANCE_AUTOMATIC (-1, the default; any negative value) takes 2.5 with a scale per point and
+   * where the distance crosses TrimDistance spacings (on edges split down to half a spacing near
+   * it) and removes the pieces below MinPieceArea it leaves. A far region is cut where it exceeds
+   * the distance by 0.1 spacing somewhere, or by 0.6 spacing when it does not reach the mesh's
+   * border (its outline or a hole's): on a depth frame such an enclosed region spans a gap of the
+   * data between the stripes of its quantized depths, kept while it stays within 3.1 spacings of
+   * the scan at the default 2.5. TRIM_DISTANCE_AUTOMATIC (-1, the default; any negative value) takes 2.5 with a scale per point and
    * GhostMargin 0, and turns the trim off otherwise (one h: an even cloud's mesh as before; ghost
    * points: the spacing needs each point's neighbours). 0 turns it off. On the shared Kinect
-   * frames 2.5 halves the mesh's area farther than three spacings from the scan (docs/mesh.md).
+   * frames 2.5 takes the mesh's area farther than three spacings from the scan from 0.2-1.3% to
+   * 0.02% or less (docs/mesh.md).
    * A TrimDistance > 0 with ghost points in a distributed run is refused.
    */
   static constexpr double TRIM_DISTANCE_AUTOMATIC = -1.0;

@@ -509,7 +509,12 @@ std::string DescribeWithoutReference(const ReferenceFreeQuality& q, double unit,
   s << "cloud " << q.cloudPoints << " points, median local spacing " << q.medianSpacing / unit << " " << unitName << "\n";
   s.precision(1);
   s << "boundary loops " << q.loops.size() << ", small holes " << q.smallHoles << " (" << q.smallHoleEdges
-    << " edges), far area " << 100.0 * q.farShare << "%, uncovered points " << 100.0 * q.uncoveredShare << "%\n";
+    << " edges), far area ";
+  // Three decimals: "no far area" must be told from a tenth of a percent.
+  s.precision(3);
+  s << 100.0 * q.farShare << "%, uncovered points ";
+  s.precision(1);
+  s << 100.0 * q.uncoveredShare << "%\n";
   std::size_t listed = 0;
   for (const HoleLoop& h : q.loops)
   {

@@ -325,9 +325,9 @@ def mesh(cloud, *, variant="com", h=None, scale_neighbors=10, scale_multiplier=1
         this many local h from the vertex along the surface (0.56 at a straight border; 0 off;
         -1, the default: 0.6 with a scale per point, off with one h).
     trim_distance : float
-        3D: cut the mesh back where, from its border, it runs farther than this many local point
-        spacings from every cloud point (0 off; -1, the default: 2.5 with a scale per point, off
-        with one h; docs/mesh.md).
+        3D: cut the mesh back where it runs farther than this many local point spacings from
+        every cloud point (0 off; -1, the default: 2.5 with a scale per point, off with one h;
+        docs/mesh.md).
     max_vertex_travel : float
         Drop crossings whose projection moves farther, in cells (0.1 to 100).
     max_seam_angle, max_fold_angle : float

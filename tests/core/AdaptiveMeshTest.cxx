@@ -251,26 +251,37 @@ TEST(AdaptiveMesh, BorderTestStopsTheMeshAtTheCloudsEdge)
   EXPECT_LT(with, 0.2 * h);
 }
 
-// The trim (MeshOptions::trimDistance) on a plane sampled with two gaps of 4 spacings in radius:
-// a round one inside and a notch (a half disc) cut into the patch's edge. Without the trim the
-// mesh covers both (each vertex is within MaxDistance of a point, the triangles between them are
-// not). With it the notch and the patch's outline are cut back to trimDistance local spacings from
-// the cloud (to within 0.3 spacing: the cut is linear along edges of at most one spacing), while
-// the inner gap stays covered: the data all around it supports the surface there, and the trim
-// opens no hole. The plane is not moved.
+// The trim (MeshOptions::trimDistance) on a plane sampled with three unsampled discs: a notch (a
+// half disc of 4 spacings in radius) cut into the patch's edge, a wide round gap inside (4.5) and
+// a narrow one (3). Without the trim the mesh covers all three (each vertex is within MaxDistance
+// of a point, the triangles between them are not). With it the notch and the patch's outline are
+// cut back to trimDistance local spacings from the cloud (to within 0.3 spacing: the cut is linear
+// along edges of at most half a spacing); the wide gap, whose centre lies more than 3.1 spacings
+// from the data, is cut open as well, while the narrow one stays covered: an enclosed region is
+// cut only where it reaches that far. The plane is not moved.
 TEST(AdaptiveMesh, TrimCutsTheMeshBackFromItsBorder)
 {
   const double half = 20.0;
-  const double gap = 4.0; // radius of both unsampled discs, in spacings
-  const Vec3 notch(half, 0.0, 0.0);
+  struct Gap
+  {
+    Vec3 centre;
+    double radius; // in spacings
+  };
+  const Gap notch{ Vec3(half, 0.0, 0.0), 4.0 };
+  const Gap wide{ Vec3(6.0, 0.0, 0.0), 4.5 };
+  const Gap narrow{ Vec3(-8.0, 0.0, 0.0), 3.0 };
+  auto inside = [](const Gap& g, const Vec3& x, double margin) {
+    return std::hypot(x.x() - g.centre.x(), x.y() - g.centre.y()) < g.radius + margin;
+  };
   std::vector<Vec3> pts;
   for (int i = -20; i <= 20; ++i)
   {
     for (int j = -20; j <= 20; ++j)
     {
-      if (std::hypot(i, j) >= gap && std::hypot(i - notch.x(), j) >= gap)
+      const Vec3 p(i, j, 0.0);
+      if (!inside(notch, p, 0.0) && !inside(wide, p, 0.0) && !inside(narrow, p, 0.0))
       {
-        pts.emplace_back(i, j, 0.0);
+        pts.push_back(p);
       }
     }
   }
@@ -284,8 +295,8 @@ TEST(AdaptiveMesh, TrimCutsTheMeshBackFromItsBorder)
   const std::vector<double> spacing = estimateLocalSpacings(index, 12, 1);
 
   // The largest distance to the cloud, in the nearest point's spacing, over a barycentric grid
-  // of every triangle outside the inner gap (with a margin of one spacing).
-  auto farthest = [&](const SurfaceMesh& mesh) {
+  // of every triangle outside the narrow gap (with a margin of one spacing).
+  auto farthest = [&](const SurfaceMesh& mesh, bool inNarrow = false) {
     double worst = 0.0;
     for (const auto& t : mesh.triangles)
     {
@@ -294,7 +305,7 @@ TEST(AdaptiveMesh, TrimCutsTheMeshBackFromItsBorder)
         for (int b = 0; a + b <= 8; ++b)
         {
           const Vec3 x = (a * mesh.points[t[0]] + b * mesh.points[t[1]] + (8 - a - b) * mesh.points[t[2]]) / 8.0;
-          if (std::hypot(x.x(), x.y()) > gap + 1.0)
+          if (inside(narrow, x, 1.0) == inNarrow)
           {
             const auto [j, d2] = index.nearest(x);
             worst = std::max(worst, std::sqrt(d2) / spacing[j]);
@@ -321,28 +332,33 @@ TEST(AdaptiveMesh, TrimCutsTheMeshBackFromItsBorder)
   };
   const double before = farthest(bridged);
   const double after = farthest(trimmed);
-  std::cout << "h_i " << index.minScale() << " to " << index.maxScale() << "; farthest outside the inner gap: bridged "
-            << before << " spacings, trimmed " << after << " spacings; trimmed triangles "
+  const double narrowGap = farthest(trimmed, true);
+  std::cout << "h_i " << index.minScale() << " to " << index.maxScale() << "; farthest outside the narrow gap: bridged "
+            << before << " spacings, trimmed " << after << " spacings; in the narrow gap " << narrowGap
+            << " spacings; trimmed triangles "
             << trimmed.statistics.trimmedSimplices << ", boundary edges " << bridged.statistics.boundaryEdges << " -> "
             << trimmed.statistics.boundaryEdges << "\n";
   ASSERT_GT(before, 3.0) << "the untrimmed mesh must run far from the cloud for this test to mean anything";
-  ASSERT_TRUE(covers(bridged, half - 1.0, 0.0)) << "the untrimmed mesh must cover the notch";
-  ASSERT_TRUE(covers(bridged, 0.0, 0.0)) << "the untrimmed mesh must cover the inner gap";
+  for (const Gap* g : { &notch, &wide, &narrow })
+  {
+    ASSERT_TRUE(covers(bridged, g->centre.x() - 1.0, 0.0)) << "the untrimmed mesh must cover each gap";
+  }
   EXPECT_LE(after, 2.5 + 0.3);
   EXPECT_FALSE(covers(trimmed, half - 1.0, 0.0)) << "the notch, 3 spacings from the cloud, is cut open";
-  EXPECT_TRUE(covers(trimmed, 0.0, 0.0)) << "the inner gap stays covered";
+  EXPECT_FALSE(covers(trimmed, wide.centre.x(), 0.0)) << "the wide gap is cut open";
+  EXPECT_TRUE(covers(trimmed, narrow.centre.x(), 0.0)) << "the narrow gap stays covered";
+  EXPECT_GT(narrowGap, 2.5) << "the narrow gap must reach past the trim distance for this test to mean anything";
   EXPECT_GT(trimmed.statistics.trimmedSimplices, 0u);
   EXPECT_EQ(trimmed.statistics.components, 1u);
   EXPECT_EQ(trimmed.statistics.nonManifoldEdges, 0u);
-  // Boundary edges only at the patch's outline (the notch included): no hole inside.
+  // Boundary edges only at the patch's outline (the notch included) and around the wide gap.
   for (const auto& [a, b] : boundaryEdges(trimmed))
   {
     for (const std::uint32_t v : { a, b })
     {
       const Vec3& p = trimmed.points[v];
-      const bool atNotch = (p - notch).norm() < gap + 3.0;
       const bool atBorder = std::max(std::abs(p.x()), std::abs(p.y())) > half - 3.0;
-      EXPECT_TRUE(atNotch || atBorder) << "boundary vertex at " << p.transpose();
+      EXPECT_TRUE(inside(notch, p, 3.0) || inside(wide, p, 0.0) || atBorder) << "boundary vertex at " << p.transpose();
     }
   }
   for (const Vec3& p : trimmed.points)

@@ -59,15 +59,16 @@
  *    spacing. Every cloud point's local spacing is measured (two parallel passes), then the excess
  *    of the distance to the nearest cloud point over trimDistance times that point's spacing is
  *    sampled at the vertices, the edges' midpoints and the triangles' centres; edges longer than
- *    one spacing with a sample near the cut are split at their midpoints (the decision is the
+ *    half a spacing with a sample near the cut are split at their midpoints (the decision is the
  *    edge's own, so both of its triangles split it and no crack opens), level by level (at most
  *    TrimLevels); then each triangle is cut along the line where the excess, linear along its
- *    edges, changes sign. Only regions beyond the distance that reach the mesh's border (its
- *    outline or a hole's) are cut: an enclosed one is surface that the data all around supports
- *    (on a depth frame, between the stripes of its quantized depths, where a cut would open a
- *    hole in a seen surface), and one that nowhere exceeds the distance by 0.1 spacing would be a
- *    nick. Pieces below minPieceArea that the cut leaves are removed. The new vertices lie on the
- *    flat triangles, so the trim moves no surface.
+ *    edges, changes sign. A region beyond the distance is cut when it exceeds the distance
+ *    somewhere by 0.1 spacing, or by 0.6 when it is enclosed (no vertex on the mesh's border):
+ *    on a depth frame such a region lies between the stripes of the quantized depths, surface the
+ *    sensor saw but measured only on the stripes; the mesh keeps it while it stays within 3.1
+ *    spacings of the data, and opens a hole (at the trim distance) where it would not. Pieces
+ *    below minPieceArea that the cut leaves are removed. The new vertices lie on the flat
+ *    triangles, so the trim moves no surface.
  * Every stage is deterministic: the result does not depend on the number of threads.
  */
 #pragma once
@@ -104,7 +105,7 @@ struct MeshOptions
   /// 3D: connected pieces of a smaller area, in units of h^2, are removed (islands that a few
   /// stray points define; on the bunny scans 10 leaves one piece). 0 keeps every piece.
   double minPieceArea = 10.0;
-  /// 3D: the mesh is cut back where, from its border, it runs farther than this many local point
+  /// 3D: the mesh is cut back where it runs farther than this many local point
   /// spacings (of the nearest cloud point, pss::smoothedSpacing) from every cloud point (stage 8).
   /// 0 (the default here; the VTK filter turns it on for a scale per point) turns the trim off.
   /// The mesher must hold the whole cloud (no ghost points).
@@ -368,10 +369,10 @@ private:
   /// Keeps the @p triangles of pieces of at least minPieceArea h^2 as @p mesh's, without the unused vertices.
   void keepLargePieces(SurfaceMesh& mesh, const std::vector<std::array<std::uint32_t, 3>>& triangles);
   /// Sets to 0 the excess of every connected region beyond the trim distance that the cut spares:
-  /// one without a vertex on the mesh's border (cutting it would open a hole in surface that the
-  /// data all around supports) and one that nowhere exceeds the distance by TrimMargin local
-  /// spacings (a nick where a gap is just wider than the distance).
-  void spareEnclosedAndShallowRegions(const SurfaceMesh& mesh);
+  /// one that nowhere exceeds the distance by TrimMargin local spacings (a nick where a gap is
+  /// just wider than the distance), or by TrimEnclosedMargin when no vertex of it lies on the
+  /// mesh's border.
+  void spareShallowRegions(const SurfaceMesh& mesh);
   /// Queues the samples of the trim's active triangles: unsettled vertices, edge midpoints, centres.
   void queueTrimSamples(const SurfaceMesh& mesh);
   /// True when a cell of normal @p face (unnormalized) is within maxFoldAngle of @p vertexNormals' sum.
@@ -444,9 +445,13 @@ private:
   /// An edge is split when one of its samples is within this fraction of its length of the cut...
   static constexpr double TrimNearFraction = 0.25;
   /// ... and it is longer than this, in local spacings.
-  static constexpr double TrimFinest = 1.0;
+  static constexpr double TrimFinest = 0.5;
   /// Regions beyond the trim distance by less than this, in local spacings, everywhere are kept.
   static constexpr double TrimMargin = 0.1;
+  /// ... and enclosed regions (no vertex on the border) by less than this: at the default distance
+  /// 2.5 they are cut only where they reach 3.1 spacings, past the 3 at which the project's metric
+  /// counts area as far, so that a gap just wider than the distance opens no pinhole.
+  static constexpr double TrimEnclosedMargin = 0.6;
   static constexpr std::size_t SpacingNeighbourCount = 12;
   int SpacingPass = 0;
   std::vector<double> RawSpacing;   ///< per cloud point (index order), the first pass

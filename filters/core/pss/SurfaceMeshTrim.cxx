@@ -351,7 +351,7 @@ bool SurfaceMesher::refineTrim(SurfaceMesh& mesh)
   return true;
 }
 
-void SurfaceMesher::spareEnclosedAndShallowRegions(const SurfaceMesh& mesh)
+void SurfaceMesher::spareShallowRegions(const SurfaceMesh& mesh)
 {
   // The vertices beyond the trim distance, linked by the edges between two of them.
   const std::size_t nv = mesh.points.size();
@@ -381,8 +381,9 @@ void SurfaceMesher::spareEnclosedAndShallowRegions(const SurfaceMesh& mesh)
     linked[next[a]++] = b;
     linked[next[b]++] = a;
   });
-  // Each region, flooded from its lowest vertex: kept (its excess set to 0) when it has no vertex
-  // on the border or nowhere reaches TrimMargin local spacings beyond the trim distance.
+  // Each region, flooded from its lowest vertex: kept (its excess set to 0) when it nowhere
+  // reaches TrimMargin local spacings beyond the trim distance, or TrimEnclosedMargin when it has
+  // no vertex on the border.
   const std::vector<char> border = piece_utils::borderVertices(mesh.triangles, nv);
   std::vector<char> seen(nv, 0);
   std::vector<std::uint32_t> region;
@@ -394,12 +395,12 @@ void SurfaceMesher::spareEnclosedAndShallowRegions(const SurfaceMesh& mesh)
     }
     region.assign(1, seed);
     seen[seed] = 1;
-    bool deep = false;
+    double reach = 0.0; // in local spacings beyond the trim distance
     bool open = false;
     for (std::size_t r = 0; r < region.size(); ++r)
     {
       const std::uint32_t v = region[r];
-      deep = deep || VertexExcess[v] > TrimMargin * VertexSpacing[v];
+      reach = std::max(reach, VertexExcess[v] / VertexSpacing[v]);
       open = open || border[v] != 0;
       for (std::uint32_t e = first[v]; e < first[v + 1]; ++e)
       {
@@ -410,7 +411,7 @@ void SurfaceMesher::spareEnclosedAndShallowRegions(const SurfaceMesh& mesh)
         }
       }
     }
-    if (!deep || !open)
+    if (!(reach > (open ? TrimMargin : TrimEnclosedMargin)))
     {
       for (const std::uint32_t v : region)
       {
@@ -426,7 +427,7 @@ void SurfaceMesher::cutFar(SurfaceMesh& mesh)
   {
     return;
   }
-  spareEnclosedAndShallowRegions(mesh);
+  spareShallowRegions(mesh);
   // Linear in the excess along each edge: the cut crosses an edge once, where both of its
   // triangles put it.
   std::unordered_map<std::uint64_t, std::uint32_t> cut;
