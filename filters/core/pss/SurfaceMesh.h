@@ -74,6 +74,7 @@
 #pragma once
 
 #include "pss/Domain.h"
+#include "pss/EdgeMap.h"
 #include "pss/ExtremalSurface.h"
 #include "pss/Parallel.h"
 #include "pss/SurfaceDefinition.h"
@@ -84,7 +85,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -407,7 +407,7 @@ private:
   std::vector<std::array<std::uint32_t, 8>> CellCorners; ///< per band cell: its corners (adaptive cells only)
   std::vector<char> Hanging;             ///< per corner (adaptive cells only)
   std::vector<HangingCorner> HangingCorners; ///< coarser cells' first
-  std::unordered_map<std::uint64_t, std::uint32_t> CrossingOfPair; ///< adaptive cells: per corner pair
+  EdgeMap<std::uint32_t> CrossingOfPair; ///< adaptive cells: per corner pair
   struct
   {
     std::vector<std::uint32_t> loop, inside;
@@ -462,7 +462,7 @@ private:
   std::vector<double> TrimValues;
   std::vector<double> VertexExcess;
   std::vector<double> VertexSpacing;
-  std::unordered_map<std::uint64_t, TrimSample> MidpointExcess;
+  EdgeMap<TrimSample> MidpointExcess;
   std::vector<char> TrimActive;
   int TrimLevel = 0;
   MeshStatistics Statistics;

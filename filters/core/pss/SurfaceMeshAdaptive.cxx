@@ -361,12 +361,12 @@ std::uint32_t SurfaceMesher::crossingBetween(std::uint32_t a, std::uint32_t b)
     const bool positiveM = Values[m].g * Sign[m] > 0.0;
     return positiveA != positiveM ? crossingBetween(a, m) : crossingBetween(m, b);
   }
-  const auto [it, added] = CrossingOfPair.try_emplace(static_cast<std::uint64_t>(a) * Keys.size() + b, NoIndex);
+  const auto [slot, added] = CrossingOfPair.tryEmplace(static_cast<std::uint64_t>(a) * Keys.size() + b, NoIndex);
   if (added)
   {
-    it->second = newCrossing(a, b);
+    slot = newCrossing(a, b); // touches no map: the reference stays valid
   }
-  return it->second;
+  return slot;
 }
 
 void SurfaceMesher::crossingsInside(const std::array<std::uint32_t, 3>& face, std::uint32_t from, std::uint32_t to,

@@ -10,7 +10,6 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <unordered_map>
 
 namespace pss
 {
@@ -144,6 +143,7 @@ void SurfaceMesher::beginTrim(const SurfaceMesh& mesh)
   VertexExcess.assign(mesh.points.size(), std::numeric_limits<double>::quiet_NaN());
   VertexSpacing.assign(mesh.points.size(), 0.0);
   MidpointExcess.clear();
+  MidpointExcess.reserve(2 * mesh.triangles.size()); // about 1.5 edges per triangle, and the splits' new ones
   TrimActive.assign(mesh.triangles.size(), 1);
   if (trims())
   {
@@ -173,7 +173,7 @@ void SurfaceMesher::queueTrimSamples(const SurfaceMesh& mesh)
         TrimSamples.push_back(mesh.points[a]);
         TrimSlots.push_back({ TrimSlot::Vertex, a });
       }
-      if (MidpointExcess.emplace(edgeKey(a, b), TrimSample{}).second)
+      if (MidpointExcess.tryEmplace(edgeKey(a, b), TrimSample{}).second)
       {
         TrimSamples.push_back(0.5 * (mesh.points[a] + mesh.points[b]));
         TrimSlots.push_back({ TrimSlot::Midpoint, edgeKey(a, b) });
@@ -233,7 +233,7 @@ bool SurfaceMesher::refineTrim(SurfaceMesh& mesh)
   // Edges to split: long ones (in the local h) near where the mesh leaves the cloud, at an end,
   // at their midpoint or at the centre of a triangle they bound. Whether an edge splits is decided
   // once for the edge, so both of its triangles split it and the mesh stays conforming.
-  std::unordered_map<std::uint64_t, std::uint32_t> split;
+  EdgeMap<std::uint32_t> split;
   const double near = TrimNearFraction;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
   {
@@ -258,7 +258,7 @@ bool SurfaceMesher::refineTrim(SurfaceMesh& mesh)
       const double worst = std::max({ VertexExcess[a], VertexExcess[b], mid.excess });
       if (length > TrimFinest * mid.spacing && (centreNear || worst > -near * length))
       {
-        split.emplace(key, NoIndex);
+        split.tryEmplace(key, NoIndex);
       }
     }
   }
@@ -270,15 +270,15 @@ bool SurfaceMesher::refineTrim(SurfaceMesh& mesh)
   // New vertices in the order of their edges' keys, not the hash table's.
   std::vector<std::uint64_t> keys;
   keys.reserve(split.size());
-  for (const auto& entry : split)
-  {
-    keys.push_back(entry.first);
-  }
+  split.forEach([&](std::uint64_t key, std::uint32_t) { keys.push_back(key); });
   std::sort(keys.begin(), keys.end());
+  // Only a triangle with two vertices on split edges can hold one: the others skip the look-ups.
+  std::vector<char> onSplit(mesh.points.size(), 0);
   for (const std::uint64_t key : keys)
   {
     const auto a = static_cast<std::uint32_t>(key >> 32);
     const auto b = static_cast<std::uint32_t>(key & 0xffffffffu);
+    onSplit[a] = onSplit[b] = 1;
     split[key] = addVertexOnEdge(mesh, a, b, 0.5);
     VertexExcess.push_back(MidpointExcess[key].excess);
     VertexSpacing.push_back(MidpointExcess[key].spacing);
@@ -294,10 +294,13 @@ bool SurfaceMesher::refineTrim(SurfaceMesh& mesh)
     int count = 0;
     for (int i = 0; i < 3; ++i)
     {
-      const auto it = split.find(edgeKey(tri[i], tri[(i + 1) % 3]));
-      if (it != split.end())
+      if (!onSplit[tri[i]] || !onSplit[tri[(i + 1) % 3]])
       {
-        mid[i] = it->second;
+        continue;
+      }
+      if (const std::uint32_t* vertex = split.find(edgeKey(tri[i], tri[(i + 1) % 3])))
+      {
+        mid[i] = *vertex;
         ++count;
       }
     }
@@ -430,16 +433,16 @@ void SurfaceMesher::cutFar(SurfaceMesh& mesh)
   spareShallowRegions(mesh);
   // Linear in the excess along each edge: the cut crosses an edge once, where both of its
   // triangles put it.
-  std::unordered_map<std::uint64_t, std::uint32_t> cut;
+  EdgeMap<std::uint32_t> cut;
   auto cutVertex = [&](std::uint32_t inside, std::uint32_t outside) {
-    const auto [it, added] = cut.emplace(edgeKey(inside, outside), NoIndex);
+    const auto [vertex, added] = cut.tryEmplace(edgeKey(inside, outside), NoIndex);
     if (added)
     {
       const double fi = VertexExcess[inside]; // <= 0 < fo
       const double fo = VertexExcess[outside];
-      it->second = addVertexOnEdge(mesh, inside, outside, fi / (fi - fo));
+      vertex = addVertexOnEdge(mesh, inside, outside, fi / (fi - fo));
     }
-    return it->second;
+    return vertex;
   };
   std::vector<std::array<std::uint32_t, 3>> triangles;
   triangles.reserve(mesh.triangles.size());
