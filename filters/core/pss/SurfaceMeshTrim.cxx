@@ -143,10 +143,10 @@ void SurfaceMesher::beginTrim(const SurfaceMesh& mesh)
   VertexExcess.assign(mesh.points.size(), std::numeric_limits<double>::quiet_NaN());
   VertexSpacing.assign(mesh.points.size(), 0.0);
   MidpointExcess.clear();
-  MidpointExcess.reserve(2 * mesh.triangles.size()); // about 1.5 edges per triangle, and the splits' new ones
   TrimActive.assign(mesh.triangles.size(), 1);
   if (trims())
   {
+    MidpointExcess.reserve(3 * mesh.triangles.size() / 2); // the edges of a mesh with few borders
     queueTrimSamples(mesh);
   }
 }
