@@ -309,7 +309,7 @@ RootScale RootAutomaticScale(vtkMultiProcessController* controller, vtkPointSetS
     const int k = surface->GetScaleNeighbors();
     if (surface->GetPointScales() == vtkPointSetSurface::POINT_SCALES_AUTOMATIC && index.size() > static_cast<std::size_t>(k))
     {
-      result[1] = pss::scaleSpread(surface->EstimatePointScales(index, threads));
+      result[1] = surface->EstimateScaleSpread(index, threads);
     }
   }
   controller->Broadcast(result, 2, 0);

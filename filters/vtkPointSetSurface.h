@@ -296,9 +296,12 @@ public:
    * The rule Prepare() follows, for a caller that holds the cloud's index itself (a distributed
    * run's rank 0): the scales per point PointScales Estimated and Automatic estimate on @p index
    * (index order), and whether Automatic takes them, for a sensor frame (field data GridDimensions
-   * or Viewpoint) or scales whose spread exceeds ScaleSpreadThreshold.
+   * or Viewpoint) or scales whose spread exceeds ScaleSpreadThreshold. EstimateScaleSpread is
+   * the spread of EstimatePointScales' scales, measured on a sample above
+   * pss::ScaleSpreadSampledAbove points (pss::estimateScaleSpread).
    */
   std::vector<double> EstimatePointScales(const pss::PointIndex& index, int threads) const;
+  double EstimateScaleSpread(const pss::PointIndex& index, int threads) const;
   bool AutomaticTakesPointScales(bool sensorFrame, double spread) const;
   ///@}
 

@@ -10,7 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <stdexcept>
 
@@ -367,3 +369,40 @@ TEST(AdaptiveScale, LocalScalesFollowTheSpacingAndTheirArguments)
 }
 
 } // namespace
+
+// The automatic mode's decision on a cloud above pss::ScaleSpreadSampledAbove points: the spread
+// measured on ScaleSpreadSamples points agrees with the spread of every point's scale. An even
+// grid has spread 1 (its border is under a tenth of its points); two grids of spacings 1 and 3,
+// each more than a tenth of the points, have spread 3.
+TEST(AdaptiveScale, SpreadOfLargeCloudsIsMeasuredOnASample)
+{
+  auto patch = [](std::vector<Vec3>& pts, double x0, int side, double step) {
+    for (int i = 0; i < side; ++i)
+    {
+      for (int j = 0; j < side; ++j)
+      {
+        pts.emplace_back(x0 + i * step, j * step, 0.0);
+      }
+    }
+  };
+  std::vector<Vec3> even;
+  patch(even, 0.0, 1040, 1.0); // 1,081,600 points
+  ASSERT_GT(even.size(), ScaleSpreadSampledAbove);
+  const PointIndex evenIndex(even, 3, 2);
+  const double evenSpread = estimateScaleSpread(evenIndex, 10, 2, 2);
+  EXPECT_NEAR(evenSpread, scaleSpread(estimateLocalScales(evenIndex, 10, 1.0, 2, 2)), 1e-12);
+  EXPECT_NEAR(evenSpread, 1.0, 1e-9) << "an even grid has one scale";
+  EXPECT_EQ(evenSpread, estimateScaleSpread(evenIndex, 10, 2, 1)) << "the same for every thread count";
+
+  std::vector<Vec3> mixed;
+  patch(mixed, 0.0, 800, 1.0);     // 640,000 points, spacing 1
+  patch(mixed, 1000.0, 700, 3.0);  // 490,000 points, spacing 3: the 90th percentile is here
+  ASSERT_GT(mixed.size(), ScaleSpreadSampledAbove);
+  const PointIndex mixedIndex(mixed, 3, 2);
+  const double sampled = estimateScaleSpread(mixedIndex, 10, 2, 2);
+  const double full = scaleSpread(estimateLocalScales(mixedIndex, 10, 1.0, 2, 2));
+  std::cout << "spread of the two patches: every point " << full << ", sampled " << sampled << "\n";
+  EXPECT_NEAR(full, 3.0, 0.05) << "the patches' spacings are 3 apart";
+  EXPECT_NEAR(sampled, full, 0.01 * full);
+  EXPECT_THROW(estimateScaleSpread(mixedIndex, 0), std::invalid_argument);
+}

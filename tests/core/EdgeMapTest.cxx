@@ -8,21 +8,10 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <map>
 #include <random>
 #include <stdexcept>
 #include <vector>
-
-namespace
-{
-
-std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b)
-{
-  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-}
-
-} // namespace
 
 TEST(EdgeMap, AgreesWithStdMapThroughGrowth)
 {
@@ -34,7 +23,8 @@ TEST(EdgeMap, AgreesWithStdMapThroughGrowth)
   {
     const std::uint32_t a = vertex(random);
     const std::uint32_t b = a + 1 + vertex(random) % 8; // neighbouring indices, as a mesh's edges
-    const std::uint64_t key = edgeKey(a, b);
+    const std::uint64_t key = pss::edgeKey(a, b);
+    ASSERT_EQ(key, pss::edgeKey(b, a));
     const auto [value, added] = map.tryEmplace(key, i);
     const bool expected = truth.emplace(key, i).second;
     ASSERT_EQ(added, expected);
@@ -53,9 +43,9 @@ TEST(EdgeMap, AgreesWithStdMapThroughGrowth)
     EXPECT_EQ(truth.at(key), value);
   });
   EXPECT_EQ(visited, truth.size());
-  EXPECT_EQ(map.find(edgeKey(6000, 7000)), nullptr);
-  map[edgeKey(6000, 7000)] = 5;
-  EXPECT_EQ(*map.find(edgeKey(6000, 7000)), 5u);
+  EXPECT_EQ(map.find(pss::edgeKey(6000, 7000)), nullptr);
+  map[pss::edgeKey(6000, 7000)] = 5;
+  EXPECT_EQ(*map.find(pss::edgeKey(6000, 7000)), 5u);
 }
 
 TEST(EdgeMap, ReserveClearAndTheReservedKey)

@@ -7,8 +7,8 @@
  * Open addressing with linear probing in one flat array, kept at most half full: a look-up is a
  * multiplication and, nearly always, one cache line, where std::unordered_map allocates a node per
  * entry and follows a pointer per look-up (the trim's edge tables cost half its serial time).
- * The key ~0 is reserved (it marks an empty slot); an edge key (min << 32 | max of two distinct
- * 32-bit indices) never takes it. There is no erase. Iteration order is the table's, which
+ * The key ~0 is reserved (it marks an empty slot); an edgeKey of two distinct vertices never
+ * takes it. There is no erase. Iteration order is the table's, which
  * depends on the insertion history: callers that need a deterministic order sort the keys.
  */
 #pragma once
@@ -21,6 +21,12 @@
 
 namespace pss
 {
+
+/// The key of the edge between vertices @p a and @p b (either order): min << 32 | max.
+inline std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b)
+{
+  return a < b ? (static_cast<std::uint64_t>(a) << 32) | b : (static_cast<std::uint64_t>(b) << 32) | a;
+}
 
 template <class Value>
 class EdgeMap

@@ -10,6 +10,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace pss
@@ -210,6 +211,74 @@ double scaleSpread(const std::vector<double>& scales)
   const double low = at(0.1);
   const double high = at(0.9);
   return high / low;
+}
+
+double estimateScaleSpread(const PointIndex& index, int k, int smoothing, int threads, double maxRatio)
+{
+  const std::size_t n = index.size();
+  if (n <= ScaleSpreadSampledAbove)
+  {
+    return scaleSpread(estimateLocalScales(index, k, 1.0, smoothing, threads, maxRatio));
+  }
+  if (k < 1 || smoothing < 0 || !(maxRatio > 0.0))
+  {
+    throw std::invalid_argument("a scale spread needs k >= 1, smoothing >= 0 and a positive maxRatio");
+  }
+  const auto kk = static_cast<std::size_t>(k);
+  std::vector<double> sampled(ScaleSpreadSamples);
+  parallelFor(ScaleSpreadSamples, threads, [&](std::size_t begin, std::size_t end) {
+    // Per point of a sample's reach: its k nearest others and its raw scale, found once.
+    std::unordered_map<std::uint32_t, std::pair<std::vector<std::uint32_t>, double>> known;
+    std::vector<std::pair<std::uint32_t, double>> found;
+    auto near = [&](std::uint32_t i) -> const std::pair<std::vector<std::uint32_t>, double>& {
+      auto [it, added] = known.try_emplace(i);
+      if (added)
+      {
+        index.kNearest(index.point(i), kk + 1, found); // the point itself comes first
+        for (std::size_t j = 1; j < found.size(); ++j)
+        {
+          it->second.first.push_back(found[j].first);
+        }
+        it->second.second = found.size() == kk + 1 ? std::sqrt(found.back().second) : 0.0;
+      }
+      return it->second;
+    };
+    // The scale of point i after `pass` smoothings, as estimateLocalScales computes it.
+    auto smoothed = [&](auto&& self, std::uint32_t i, int pass) -> double {
+      if (pass == 0)
+      {
+        return near(i).second;
+      }
+      const std::vector<std::uint32_t> neighbours = near(i).first;
+      std::vector<double> own{ self(self, i, pass - 1) };
+      for (const std::uint32_t j : neighbours)
+      {
+        own.push_back(self(self, j, pass - 1));
+      }
+      std::nth_element(own.begin(), own.begin() + static_cast<std::ptrdiff_t>(kk / 2), own.end());
+      return own[kk / 2];
+    };
+    for (std::size_t s = begin; s < end; ++s)
+    {
+      known.clear();
+      sampled[s] = smoothed(smoothed, static_cast<std::uint32_t>(s * n / ScaleSpreadSamples), smoothing);
+    }
+  });
+  // As estimateLocalScales: no scale of its own takes the smallest positive, the cap is maxRatio
+  // times the median.
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const double r : sampled)
+  {
+    smallest = r > 0.0 ? std::min(smallest, r) : smallest;
+  }
+  std::vector<double> sorted(sampled);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const double cap = maxRatio * sorted[sorted.size() / 2];
+  for (double& r : sampled)
+  {
+    r = std::min(r > 0.0 ? r : smallest, cap);
+  }
+  return scaleSpread(sampled);
 }
 
 } // namespace pss

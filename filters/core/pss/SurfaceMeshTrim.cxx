@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Stage 8 of the mesher (SurfaceMesh.h): a distance criterion between the vertices. A triangle
 // can run on past the scan's edge although each of its vertices lies near a cloud point (a
-// smoothed h_i exceeds the spacing where the density changes); the trim cuts the mesh back where,
-// from its border, it runs farther than trimDistance local point spacings from the cloud.
+// smoothed h_i exceeds the spacing where the density changes); the trim cuts the mesh back where
+// it runs farther than trimDistance local point spacings from the cloud.
 #include "pss/SurfaceMesh.h"
 #include "pss/SurfaceMeshPieces.h"
 
@@ -16,11 +16,6 @@ namespace pss
 
 namespace
 {
-
-std::uint64_t edgeKey(std::uint32_t a, std::uint32_t b)
-{
-  return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
-}
 
 Vec3 unitOrZero(const Vec3& v)
 {
