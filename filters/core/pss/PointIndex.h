@@ -273,7 +273,7 @@ double scaleSpread(const std::vector<double>& scales);
 /// Clouds above this many points have their scales' spread measured on a sample.
 constexpr std::size_t ScaleSpreadSampledAbove = std::size_t{ 1 } << 20;
 /// How many evenly spread points (in index order) that sample holds.
-constexpr std::size_t ScaleSpreadSamples = 16384;
+constexpr std::size_t ScaleSpreadSamples = 4096;
 
 /**
  * scaleSpread(estimateLocalScales(index, k, 1, smoothing, threads, maxRatio)) without the scales
