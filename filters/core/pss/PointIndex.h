@@ -281,7 +281,7 @@ constexpr std::size_t ScaleSpreadSamples = 4096;
  * scales (each point's k-th neighbour distance, median-smoothed @p smoothing times over its k
  * nearest, capped at maxRatio times the median) are computed at ScaleSpreadSamples points only,
  * evenly spread in index order (Morton order at that size), from the neighbourhoods they
- * depend on. At 10^7 points that is about a tenth of the queries, and none of the n * k
+ * depend on: at 10^7 points about 250,000 neighbour queries instead of 10^7, and none of the n * k
  * neighbour table. The same for every thread count.
  */
 double estimateScaleSpread(const PointIndex& index, int k = 10, int smoothing = 2, int threads = 1, double maxRatio = 6.0);
