@@ -16,6 +16,30 @@
 namespace pss
 {
 
+namespace
+{
+
+// The last step of the local scales, in place: a point without a scale of its own (its k
+// neighbours all coincide with it) takes the smallest positive one (none in a cloud of one
+// repeated point, which setScales refuses), and no scale exceeds maxRatio times their median.
+void settleScales(std::vector<double>& scales, double maxRatio)
+{
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const double r : scales)
+  {
+    smallest = r > 0.0 ? std::min(smallest, r) : smallest;
+  }
+  std::vector<double> sorted(scales);
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+  const double cap = maxRatio * sorted[sorted.size() / 2];
+  for (double& r : scales)
+  {
+    r = std::min(r > 0.0 ? r : smallest, cap);
+  }
+}
+
+} // namespace
+
 double estimateScale(const PointIndex& index, int k, double multiplier, int threads)
 {
   if (k < 1 || index.size() < static_cast<std::size_t>(k) + 1)
@@ -108,24 +132,11 @@ std::vector<double> estimateLocalScales(
     });
     raw.swap(next);
   }
-  // A point whose k neighbours all coincide with it has no scale of its own: it takes the
-  // smallest positive one (a cloud of one repeated point has none, which setScales refuses).
-  double smallest = std::numeric_limits<double>::infinity();
-  for (const double r : raw)
-  {
-    if (r > 0.0)
-    {
-      smallest = std::min(smallest, r);
-    }
-  }
-  std::vector<double> sorted(raw);
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2), sorted.end());
-  const double cap = maxRatio * sorted[n / 2];
+  settleScales(raw, maxRatio);
   std::vector<double> out(n + index.skippedCount(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < n; ++i)
   {
-    const double own = raw[i] > 0.0 ? raw[i] : smallest;
-    out[index.originalId(i)] = multiplier * (own > cap ? cap : own);
+    out[index.originalId(i)] = multiplier * raw[i];
   }
   return out;
 }
@@ -264,20 +275,7 @@ double estimateScaleSpread(const PointIndex& index, int k, int smoothing, int th
       sampled[s] = smoothed(smoothed, static_cast<std::uint32_t>(s * n / ScaleSpreadSamples), smoothing);
     }
   });
-  // As estimateLocalScales: no scale of its own takes the smallest positive, the cap is maxRatio
-  // times the median.
-  double smallest = std::numeric_limits<double>::infinity();
-  for (const double r : sampled)
-  {
-    smallest = r > 0.0 ? std::min(smallest, r) : smallest;
-  }
-  std::vector<double> sorted(sampled);
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
-  const double cap = maxRatio * sorted[sorted.size() / 2];
-  for (double& r : sampled)
-  {
-    r = std::min(r > 0.0 ? r : smallest, cap);
-  }
+  settleScales(sampled, maxRatio);
   return scaleSpread(sampled);
 }
 
