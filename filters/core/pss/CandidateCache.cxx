@@ -77,6 +77,7 @@ void CandidateCache::fetch(const PointIndex& index, const SurfaceParameters& par
   if (scaled)
   {
     fetchScaled(index, y, nearest.first, leaves, minMargin);
+    fetchNormals(index);
     return;
   }
   const double margin = std::max({ 0.5 * h, std::min(0.05 * centerMinDist, 2.0 * h), minMargin });
@@ -153,6 +154,29 @@ void CandidateCache::fetch(const PointIndex& index, const SurfaceParameters& par
     pz[0] = p.z();
     ids[0] = static_cast<std::uint32_t>(nearest.first);
     count = 1;
+  }
+  fetchNormals(index);
+}
+
+void CandidateCache::fetchNormals(const PointIndex& index)
+{
+  withNormals = index.hasNormals();
+  if (!withNormals)
+  {
+    return;
+  }
+  if (nx.size() < px.size())
+  {
+    nx.resize(px.size());
+    ny.resize(px.size());
+    nz.resize(px.size());
+  }
+  for (Eigen::Index k = 0; k < count; ++k)
+  {
+    const Vec3& n = index.normal(ids[static_cast<std::size_t>(k)]);
+    nx[k] = n.x();
+    ny[k] = n.y();
+    nz[k] = n.z();
   }
 }
 
@@ -259,6 +283,7 @@ void CandidateCache::focus(const CandidateCache& wider, const Vec3& c, double re
   band = wider.band;
   cutoffSq = wider.cutoffSq;
   scaled = wider.scaled;
+  withNormals = wider.withNormals;
   center = c;
   const Eigen::Index m = wider.count;
   if (scaled)
@@ -287,6 +312,7 @@ void CandidateCache::focus(const CandidateCache& wider, const Vec3& c, double re
     y[n] = wy[i];
     z[n] = wz[i];
     id[n] = wid[i];
+    copyNormal(wider, i, n);
     n += ds[i] < sqRadius ? 1 : 0;
   }
   count = n;
@@ -316,6 +342,7 @@ void CandidateCache::focusScaled(const CandidateCache& wider, const Vec3& c, dou
     pk[n] = wider.pk[i];
     ph[n] = wider.ph[i];
     ids[static_cast<std::size_t>(n)] = wider.ids[static_cast<std::size_t>(i)];
+    copyNormal(wider, i, n);
     n += d2[i] < r * r ? 1 : 0;
   }
   count = n;
@@ -341,6 +368,22 @@ void CandidateCache::reserve(Eigen::Index n)
   {
     pk.conservativeResize(px.size());
     ph.conservativeResize(px.size());
+  }
+  if (withNormals && nx.size() < px.size())
+  {
+    nx.conservativeResize(px.size());
+    ny.conservativeResize(px.size());
+    nz.conservativeResize(px.size());
+  }
+}
+
+void CandidateCache::copyNormal(const CandidateCache& wider, Eigen::Index from, Eigen::Index to)
+{
+  if (withNormals)
+  {
+    nx[to] = wider.nx[from];
+    ny[to] = wider.ny[from];
+    nz[to] = wider.nz[from];
   }
 }
 } // namespace pss

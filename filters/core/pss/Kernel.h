@@ -96,8 +96,8 @@ struct Neighbourhood
   /// domain's distances, e_I's window.
   double localScale = 0.0;
   Eigen::ArrayXd pointScale;      ///< scaled: h_i per neighbour
-  /// The neighbours' unit normals, when gathered by gatherOrientedNeighbourhood (withNormals);
-  /// robust is scratch for the fits that reweigh the neighbours (RIMLS).
+  /// The neighbours' unit normals (withNormals: whenever the index has normals; the padding's
+  /// are 0); robust is scratch for the fits that reweigh the neighbours (RIMLS).
   bool withNormals = false;
   Eigen::ArrayXd nx, ny, nz, robust;
   /// What the contents were gathered for (index serial, h, cutoff; 0 = nothing yet), so that a

@@ -117,37 +117,53 @@ PSS_KERNEL_INLINE VecD expNonPositive(const VecD& v)
   return v != v ? v : e;
 }
 
-// Keeps the candidates inside the band (squared distance below @p limit, or equal to the nearest
-// one's), in order: writes their offsets and squared distances to @p nb from position 0 on and
-// returns how many there are. May write up to four entries past that count (the arrays have
-// that room). Candidates from @p i on, n kept so far; branch-free: every candidate is written,
-// only the kept ones advance n.
-PSS_KERNEL_INLINE Eigen::Index compactTail(const double* px, const double* py, const double* pz, const double* sq,
-  Eigen::Index i, Eigen::Index m, Eigen::Index n, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
+// The normals of candidate i, when the candidates carry them (Normals), to nb's slot n.
+template <bool Normals>
+PSS_KERNEL_INLINE void copyNormal(const Candidates& c, Eigen::Index i, Eigen::Index n, Neighbourhood& nb)
 {
-  for (; i < m; ++i)
+  if constexpr (Normals)
   {
-    nb.dx[n] = px[i] - origin.x();
-    nb.dy[n] = py[i] - origin.y();
-    nb.dz[n] = pz[i] - origin.z();
-    nb.sqDist[n] = sq[i];
-    n += static_cast<Eigen::Index>((sq[i] < limit) | (sq[i] == minSq));
+    nb.nx[n] = c.nx[i];
+    nb.ny[n] = c.ny[i];
+    nb.nz[n] = c.nz[i];
+  }
+}
+
+// Keeps the candidates inside the band (squared distance below @p limit, or equal to the nearest
+// one's), in order: writes their offsets, squared distances and (Normals) normals to @p nb from
+// position 0 on and returns how many there are. May write up to four entries past that count (the
+// arrays have that room). Candidates from @p i on, n kept so far; branch-free: every candidate is
+// written, only the kept ones advance n.
+template <bool Normals>
+PSS_KERNEL_INLINE Eigen::Index compactTail(const Candidates& c, Eigen::Index i, Eigen::Index n, const Vec3& origin,
+  double limit, double minSq, Neighbourhood& nb)
+{
+  for (; i < c.count; ++i)
+  {
+    nb.dx[n] = c.px[i] - origin.x();
+    nb.dy[n] = c.py[i] - origin.y();
+    nb.dz[n] = c.pz[i] - origin.z();
+    nb.sqDist[n] = c.sq[i];
+    copyNormal<Normals>(c, i, n, nb);
+    n += static_cast<Eigen::Index>((c.sq[i] < limit) | (c.sq[i] == minSq));
   }
   return n;
 }
 
 #if !defined(PSS_CORE_COPY_X86_64_V3)
-Eigen::Index compactCandidatesBaseline(const double* px, const double* py, const double* pz, const double* sq,
-  Eigen::Index m, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
+Eigen::Index compactCandidatesBaseline(
+  const Candidates& c, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
 {
-  return compactTail(px, py, pz, sq, 0, m, 0, origin, limit, minSq, nb);
+  return c.nx ? compactTail<true>(c, 0, 0, origin, limit, minSq, nb)
+              : compactTail<false>(c, 0, 0, origin, limit, minSq, nb);
 }
 #endif
 
 // The scaled candidates below @p bound (scaled squared distances), in order: their offsets,
-// squared distances, 1/h_i^2 and h_i, and in weight the exponent minScaled - scaled (<= 0) that
-// expNonPositive turns into the weight. Candidates from @p i on, n kept so far; branch-free as
-// compactTail.
+// squared distances, 1/h_i^2, h_i, (Normals) normals, and in weight the exponent minScaled -
+// scaled (<= 0) that expNonPositive turns into the weight. Candidates from @p i on, n kept so
+// far; branch-free as compactTail.
+template <bool Normals>
 PSS_KERNEL_INLINE Eigen::Index compactScaledTail(const ScaledCandidates& c, Eigen::Index i, Eigen::Index n,
   const Vec3& origin, double bound, double minScaled, Neighbourhood& nb)
 {
@@ -160,6 +176,7 @@ PSS_KERNEL_INLINE Eigen::Index compactScaledTail(const ScaledCandidates& c, Eige
     nb.inverseSqScale[n] = c.pk[i];
     nb.pointScale[n] = c.ph[i];
     nb.weight[n] = minScaled - c.scaledSq[i];
+    copyNormal<Normals>(c, i, n, nb);
     n += static_cast<Eigen::Index>(c.scaledSq[i] < bound);
   }
   return n;
@@ -169,7 +186,8 @@ PSS_KERNEL_INLINE Eigen::Index compactScaledTail(const ScaledCandidates& c, Eige
 Eigen::Index compactScaledBaseline(
   const ScaledCandidates& c, const Vec3& origin, double bound, double minScaled, Neighbourhood& nb)
 {
-  return compactScaledTail(c, 0, 0, origin, bound, minScaled, nb);
+  return c.nx ? compactScaledTail<true>(c, 0, 0, origin, bound, minScaled, nb)
+              : compactScaledTail<false>(c, 0, 0, origin, bound, minScaled, nb);
 }
 #endif
 
@@ -204,36 +222,70 @@ PSS_TARGET_AVX2 inline __m256d moveDownAvx2(__m256d v, __m256i perm)
   return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), perm));
 }
 
-PSS_TARGET_AVX2 Eigen::Index compactCandidatesAvx2(const double* px, const double* py, const double* pz,
-  const double* sq, Eigen::Index m, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
+// Stores the lanes of @p source from @p i on that perm picks, at @p target.
+PSS_TARGET_AVX2 inline void storeKeptAvx2(double* target, const double* source, Eigen::Index i, __m256i perm)
+{
+  _mm256_storeu_pd(target, moveDownAvx2(_mm256_loadu_pd(source + i), perm));
+}
+
+// Stores the lanes of source - origin from @p i on that perm picks, at @p target.
+PSS_TARGET_AVX2 inline void storeKeptOffsetAvx2(
+  double* target, const double* source, __m256d origin, Eigen::Index i, __m256i perm)
+{
+  _mm256_storeu_pd(target, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(source + i), origin), perm));
+}
+
+template <bool Normals>
+PSS_TARGET_AVX2 inline void storeKeptNormalsAvx2(
+  const Candidates& c, Eigen::Index i, Eigen::Index n, __m256i perm, Neighbourhood& nb)
+{
+  if constexpr (Normals)
+  {
+    storeKeptAvx2(nb.nx.data() + n, c.nx, i, perm);
+    storeKeptAvx2(nb.ny.data() + n, c.ny, i, perm);
+    storeKeptAvx2(nb.nz.data() + n, c.nz, i, perm);
+  }
+}
+
+// Four candidates at a time: the kept ones are moved to the front of the vector by a permutation
+// chosen from the 4-bit mask, and the whole vector is stored at n.
+template <bool Normals>
+PSS_TARGET_AVX2 Eigen::Index compactAvx2(
+  const Candidates& c, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
 {
   Eigen::Index n = 0;
   Eigen::Index i = 0;
-  // Four candidates at a time: the kept ones are moved to the front of the vector by a permutation
-  // chosen from the 4-bit mask, and the whole vector is stored at n.
   const auto& permutations = compactPermutations();
   const __m256d ox = _mm256_set1_pd(origin.x());
   const __m256d oy = _mm256_set1_pd(origin.y());
   const __m256d oz = _mm256_set1_pd(origin.z());
   const __m256d lim = _mm256_set1_pd(limit);
   const __m256d nearest = _mm256_set1_pd(minSq);
-  for (; i + 4 <= m; i += 4)
+  for (; i + 4 <= c.count; i += 4)
   {
-    const __m256d d = _mm256_loadu_pd(sq + i);
+    const __m256d d = _mm256_loadu_pd(c.sq + i);
     const __m256d keep =
       _mm256_or_pd(_mm256_cmp_pd(d, lim, _CMP_LT_OQ), _mm256_cmp_pd(d, nearest, _CMP_EQ_OQ));
     const int mask = _mm256_movemask_pd(keep);
     const __m256i perm =
       _mm256_loadu_si256(reinterpret_cast<const __m256i*>(permutations[static_cast<std::size_t>(mask)].data()));
-    _mm256_storeu_pd(nb.dx.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(px + i), ox), perm));
-    _mm256_storeu_pd(nb.dy.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(py + i), oy), perm));
-    _mm256_storeu_pd(nb.dz.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(pz + i), oz), perm));
-    _mm256_storeu_pd(nb.sqDist.data() + n, moveDownAvx2(d, perm));
+    storeKeptOffsetAvx2(nb.dx.data() + n, c.px, ox, i, perm);
+    storeKeptOffsetAvx2(nb.dy.data() + n, c.py, oy, i, perm);
+    storeKeptOffsetAvx2(nb.dz.data() + n, c.pz, oz, i, perm);
+    storeKeptAvx2(nb.sqDist.data() + n, c.sq, i, perm);
+    storeKeptNormalsAvx2<Normals>(c, i, n, perm, nb);
     n += __builtin_popcount(static_cast<unsigned>(mask));
   }
-  return compactTail(px, py, pz, sq, i, m, n, origin, limit, minSq, nb);
+  return compactTail<Normals>(c, i, n, origin, limit, minSq, nb);
 }
 
+PSS_TARGET_AVX2 Eigen::Index compactCandidatesAvx2(
+  const Candidates& c, const Vec3& origin, double limit, double minSq, Neighbourhood& nb)
+{
+  return c.nx ? compactAvx2<true>(c, origin, limit, minSq, nb) : compactAvx2<false>(c, origin, limit, minSq, nb);
+}
+
+template <bool Normals>
 PSS_TARGET_AVX2 Eigen::Index compactScaledAvx2(
   const ScaledCandidates& c, const Vec3& origin, double bound, double minScaled, Neighbourhood& nb)
 {
@@ -251,16 +303,24 @@ PSS_TARGET_AVX2 Eigen::Index compactScaledAvx2(
     const int mask = _mm256_movemask_pd(_mm256_cmp_pd(s, lim, _CMP_LT_OQ));
     const __m256i perm =
       _mm256_loadu_si256(reinterpret_cast<const __m256i*>(permutations[static_cast<std::size_t>(mask)].data()));
-    _mm256_storeu_pd(nb.dx.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(c.px + i), ox), perm));
-    _mm256_storeu_pd(nb.dy.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(c.py + i), oy), perm));
-    _mm256_storeu_pd(nb.dz.data() + n, moveDownAvx2(_mm256_sub_pd(_mm256_loadu_pd(c.pz + i), oz), perm));
-    _mm256_storeu_pd(nb.sqDist.data() + n, moveDownAvx2(_mm256_loadu_pd(c.sq + i), perm));
-    _mm256_storeu_pd(nb.inverseSqScale.data() + n, moveDownAvx2(_mm256_loadu_pd(c.pk + i), perm));
-    _mm256_storeu_pd(nb.pointScale.data() + n, moveDownAvx2(_mm256_loadu_pd(c.ph + i), perm));
+    storeKeptOffsetAvx2(nb.dx.data() + n, c.px, ox, i, perm);
+    storeKeptOffsetAvx2(nb.dy.data() + n, c.py, oy, i, perm);
+    storeKeptOffsetAvx2(nb.dz.data() + n, c.pz, oz, i, perm);
+    storeKeptAvx2(nb.sqDist.data() + n, c.sq, i, perm);
+    storeKeptAvx2(nb.inverseSqScale.data() + n, c.pk, i, perm);
+    storeKeptAvx2(nb.pointScale.data() + n, c.ph, i, perm);
     _mm256_storeu_pd(nb.weight.data() + n, moveDownAvx2(_mm256_sub_pd(least, s), perm));
+    storeKeptNormalsAvx2<Normals>(c, i, n, perm, nb);
     n += __builtin_popcount(static_cast<unsigned>(mask));
   }
-  return compactScaledTail(c, i, n, origin, bound, minScaled, nb);
+  return compactScaledTail<Normals>(c, i, n, origin, bound, minScaled, nb);
+}
+
+PSS_TARGET_AVX2 Eigen::Index compactScaledCandidatesAvx2(
+  const ScaledCandidates& c, const Vec3& origin, double bound, double minScaled, Neighbourhood& nb)
+{
+  return c.nx ? compactScaledAvx2<true>(c, origin, bound, minScaled, nb)
+              : compactScaledAvx2<false>(c, origin, bound, minScaled, nb);
 }
 #endif
 
@@ -418,7 +478,7 @@ PSS_KERNEL_COPIES(V3, )
 const KernelTable& kernels()
 {
   static const KernelTable table{ "x86-64-v3", compactCandidatesAvx2, weightsV3, expV3, scatterV3, momentsV3,
-    compactScaledAvx2, scaledWeightsV3 };
+    compactScaledCandidatesAvx2, scaledWeightsV3 };
   return table;
 }
 #else
@@ -436,7 +496,7 @@ const KernelTable& kernels()
       scatterBaseline, momentsBaseline, compactScaledBaseline, scaledWeightsBaseline };
 #if PSS_KERNEL_DISPATCH
     const KernelTable avx2{ "avx2", compactCandidatesAvx2, weightsAvx2, expAvx2, scatterAvx2, momentsAvx2,
-      compactScaledAvx2, scaledWeightsAvx2 };
+      compactScaledCandidatesAvx2, scaledWeightsAvx2 };
     const char* forced = std::getenv("PSS_SIMD");
     if (forced && std::strcmp(forced, "baseline") == 0)
     {

@@ -20,26 +20,34 @@ namespace dispatch
 // instruction set chosen.
 constexpr int SimdLanes = 4;
 
-// The candidates of a neighbourhood with a scale per point (CandidateCache's arrays): coordinates,
-// squared distances, their scaled values |p - y|^2 / h_i^2, 1 / h_i^2 and h_i.
-struct ScaledCandidates
+// The candidates of a neighbourhood (CandidateCache's arrays): coordinates, squared distances and,
+// when the cloud has them (else null), unit normals, compacted with the rest.
+struct Candidates
 {
   const double* px;
   const double* py;
   const double* pz;
   const double* sq;
+  const double* nx;
+  const double* ny;
+  const double* nz;
+  Eigen::Index count;
+};
+
+// The same with a scale per point: also the scaled squared distances |p - y|^2 / h_i^2, 1 / h_i^2
+// and h_i.
+struct ScaledCandidates : Candidates
+{
   const double* scaledSq;
   const double* pk;
   const double* ph;
-  Eigen::Index count;
 };
 
 // One copy of every kernel per instruction set, and the table of the copy in use.
 struct KernelTable
 {
   const char* name;
-  Eigen::Index (*compact)(const double*, const double*, const double*, const double*, Eigen::Index, const Vec3&,
-    double, double, Neighbourhood&);
+  Eigen::Index (*compact)(const Candidates&, const Vec3&, double, double, Neighbourhood&);
   void (*weights)(const double*, const double*, const double*, const double*, double*, Eigen::Index, double, double,
     double*);
   void (*exp)(const double*, double*, Eigen::Index);

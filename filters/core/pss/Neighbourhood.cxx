@@ -67,7 +67,7 @@ void Neighbourhood::resize(Eigen::Index n)
   if (dx.size() < needed)
   {
     const Eigen::Index capacity = std::max<Eigen::Index>(needed, 2 * dx.size());
-    for (Eigen::ArrayXd* a : { &dx, &dy, &dz, &sqDist, &weight, &inverseSqScale, &pointScale })
+    for (Eigen::ArrayXd* a : { &dx, &dy, &dz, &sqDist, &weight, &inverseSqScale, &pointScale, &nx, &ny, &nz, &robust })
     {
       a->resize(capacity);
     }
@@ -118,6 +118,26 @@ double scaledReachSq(const PointIndex& index, const Neighbourhood& nb, double cu
   return index.maxScale() * index.maxScale() * (nb.minScaledSqDist + cutoff * cutoff);
 }
 
+// The kernels' view of @p cache's first count candidates, whose squared distances are @p sq.
+dispatch::Candidates candidatesOf(const CandidateCache& cache, const double* sq)
+{
+  const bool normals = cache.withNormals;
+  return { cache.px.data(), cache.py.data(), cache.pz.data(), sq, normals ? cache.nx.data() : nullptr,
+    normals ? cache.ny.data() : nullptr, normals ? cache.nz.data() : nullptr, cache.count };
+}
+
+// The padding after the last of @p n neighbours (up to @p padded) holds zero normals.
+void padNormals(Neighbourhood& nb, Eigen::Index n, Eigen::Index padded)
+{
+  if (nb.withNormals)
+  {
+    for (Eigen::Index i = n; i < padded; ++i)
+    {
+      nb.nx[i] = nb.ny[i] = nb.nz[i] = 0.0;
+    }
+  }
+}
+
 // gatherNeighbourhood with a scale per point (the file comment of Kernel.h): the scaled squared
 // distances s_i = d_i^2 / h_i^2 take the place of d_i^2 / h^2, per candidate.
 void gatherScaled(const PointIndex& index, const SurfaceParameters& params, const CandidateCache& cache,
@@ -135,8 +155,8 @@ void gatherScaled(const PointIndex& index, const SurfaceParameters& params, cons
   const double bound = minScaled + params.cutoff * params.cutoff;
   nb.resize(m);
   // The exponents go to weight, for expNonPositive below.
-  const dispatch::ScaledCandidates candidates{ cache.px.data(), cache.py.data(), cache.pz.data(), sq.data(),
-    scaledSq.data(), cache.pk.data(), cache.ph.data(), m };
+  const dispatch::ScaledCandidates candidates{ candidatesOf(cache, sq.data()), scaledSq.data(), cache.pk.data(),
+    cache.ph.data() };
   const Eigen::Index n = kernels().compactScaled(candidates, nb.origin, bound, minScaled, nb);
   // The last vector is padded with neighbours of weight 0 at offset 0, which add nothing.
   const Eigen::Index padded = (n + SimdLanes - 1) / SimdLanes * SimdLanes;
@@ -147,6 +167,7 @@ void gatherScaled(const PointIndex& index, const SurfaceParameters& params, cons
     nb.inverseSqScale[i] = nb.pointScale[i] = 0.0;
     nb.weight[i] = -std::numeric_limits<double>::infinity();
   }
+  padNormals(nb, n, padded);
   // Weights, their sum, the first moments and the weighted scale in one pass.
   double sums[5];
   kernels().scaledWeights(
@@ -188,6 +209,7 @@ void gatherNeighbourhood(
   {
     cache.fetch(index, params, nb.origin, ws.leaves);
   }
+  nb.withNormals = cache.withNormals;
   if (nb.scaled)
   {
     gatherScaled(index, params, cache, nb, ws);
@@ -202,8 +224,7 @@ void gatherNeighbourhood(
   const auto sq = cache.squaredDistances(nb.origin, ws.candidateSq);
   const double minSq = sq.minCoeff();
   nb.resize(m);
-  const Eigen::Index n = kernels().compact(cache.px.data(), cache.py.data(), cache.pz.data(), sq.data(), m,
-    nb.origin, minSq + cache.band, minSq, nb);
+  const Eigen::Index n = kernels().compact(candidatesOf(cache, sq.data()), nb.origin, minSq + cache.band, minSq, nb);
   nb.count = n;
   nb.minSqDist = minSq;
   noteReach(index, origin, minSq + cache.band, ws);
@@ -214,6 +235,7 @@ void gatherNeighbourhood(
     nb.dx[i] = nb.dy[i] = nb.dz[i] = 0.0;
     nb.sqDist[i] = std::numeric_limits<double>::infinity();
   }
+  padNormals(nb, n, padded);
   // Weights, their sum and the first moments in one pass.
   double sums[4];
   kernels().weights(nb.sqDist.data(), nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.weight.data(), padded, minSq,

@@ -48,74 +48,13 @@ void gatherOrientedNeighbourhood(
   {
     throw std::invalid_argument("this definition needs an oriented normal at every cloud point");
   }
-  const Vec3 origin = index.restrict(y);
-  const bool kept = nb.indexSerial == index.serial() && nb.h == params.h && nb.cutoff == params.cutoff &&
-    nb.origin == origin;
+  // The candidate caches carry the normals of an index that has them, and every neighbourhood
+  // gathered from them compacts the normals with the coordinates.
   gatherNeighbourhood(index, params, y, nb, ws);
-  if (nb.withNormals)
+  if (!nb.withNormals)
   {
-    return;
+    throw std::logic_error("gatherOrientedNeighbourhood: the neighbourhood came without normals");
   }
-  // The neighbourhood is the selection gatherNeighbourhood made from the cache that served it
-  // (the focused one when it covers the query, else the wide one, fetched anew when needed); pick
-  // the same candidates again, by the same test (compactTail's and compactScaledTail's in
-  // KernelDispatch.cxx), to know which points they are.
-  auto served = [&]() -> const CandidateCache* {
-    return ws.focused.covers(index, params, nb.origin) ? &ws.focused : &ws.wide;
-  };
-  const CandidateCache* cache = served();
-  if (kept && !cache->covers(index, params, nb.origin))
-  {
-    // Kept from an earlier gather whose candidates have moved on since: gather it again.
-    nb.indexSerial = 0;
-    gatherNeighbourhood(index, params, y, nb, ws);
-    cache = served();
-  }
-  const Eigen::Index m = cache->count;
-  const auto sq = cache->squaredDistances(nb.origin, ws.candidateSq);
-  const Eigen::Index capacity = nb.dx.size();
-  if (nb.nx.size() < capacity)
-  {
-    for (Eigen::ArrayXd* a : { &nb.nx, &nb.ny, &nb.nz, &nb.robust })
-    {
-      a->resize(capacity);
-    }
-  }
-  Eigen::Index n = 0;
-  auto keep = [&](Eigen::Index k) {
-    const Vec3& normal = index.normal(cache->ids[static_cast<std::size_t>(k)]);
-    nb.nx[n] = normal.x();
-    nb.ny[n] = normal.y();
-    nb.nz[n] = normal.z();
-    ++n;
-  };
-  if (nb.scaled)
-  {
-    const double bound = nb.minScaledSqDist + params.cutoff * params.cutoff;
-    for (Eigen::Index k = 0; k < m; ++k)
-    {
-      if (sq[k] * cache->pk[k] < bound)
-      {
-        keep(k);
-      }
-    }
-  }
-  else
-  {
-    const double limit = nb.minSqDist + cache->band;
-    for (Eigen::Index k = 0; k < m; ++k)
-    {
-      if (sq[k] < limit || sq[k] == nb.minSqDist)
-      {
-        keep(k);
-      }
-    }
-  }
-  if (n != nb.count)
-  {
-    throw std::logic_error("gatherOrientedNeighbourhood: the normals do not match the neighbourhood");
-  }
-  nb.withNormals = true;
 }
 
 } // namespace pss

@@ -42,9 +42,12 @@ struct CandidateCache
   double centerMinDist = 0.0;
   double radius = 0.0;
   Eigen::ArrayXd px, py, pz;
-  /// Each candidate's index in the PointIndex, for per-point data beside the coordinates (the
-  /// normals of OrientedNeighbourhood.cxx).
+  /// Each candidate's index in the PointIndex.
   std::vector<std::uint32_t> ids;
+  /// The candidates' unit normals when the index has them (PointIndex::hasNormals), fetched once
+  /// here so that each neighbourhood compacts them with the coordinates (APSS, RIMLS).
+  bool withNormals = false;
+  Eigen::ArrayXd nx, ny, nz;
   /// A scale per point (PointIndex::hasScales): each candidate's 1 / h_i^2 and h_i. The fetch
   /// then holds every point that a query within margin of center can need, whatever its scale.
   bool scaled = false;
@@ -70,6 +73,10 @@ struct CandidateCache
   void reserve(Eigen::Index n);
 
 private:
+  /// Fills nx, ny, nz from ids (when the index has normals) and sets withNormals.
+  void fetchNormals(const PointIndex& index);
+  /// Copies wider's normal @p from to @p to (focus), when there are normals.
+  void copyNormal(const CandidateCache& wider, Eigen::Index from, Eigen::Index to);
   void fetchScaled(const PointIndex& index, const Vec3& y, std::size_t nearest, PointIndex::LeafRanges& leaves,
     double minMargin);
   void focusScaled(const CandidateCache& wider, const Vec3& c, double reach, Eigen::ArrayXd& sq);
