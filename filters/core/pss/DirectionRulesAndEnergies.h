@@ -234,6 +234,9 @@ struct NormalFit
   double value = 0.0;
   Vec3 gradient = Vec3::Zero();
   Vec3 step = Vec3::Zero();
+  /// The fit's own second derivative along any unit direction (it is isotropic): 2 uq for the
+  /// algebraic sphere, 0 for RIMLS, whose f is held linear about x.
+  double secondDerivative = 0.0;
   double stability = 0.0;
   /// False where the fit has no surface: no weight, normals that cancel (stability below the
   /// threshold), an imaginary sphere (|ul|^2 - 4 u0 uq <= 0) or a zero gradient.
@@ -267,7 +270,9 @@ private:
  *        line that crosses the surface are the zeros of f, so the extremal surface is the fit's
  *        zero set. The slope is 2 f grad f . a with the fit's gradient (APSS: the sphere's, the
  *        sphere held fixed; RIMLS: with the weights' derivatives, the robust factors held fixed);
- *        it changes sign exactly where f does, so the line search finds f = 0 exactly.
+ *        it changes sign exactly where f does, so the line search finds f = 0 exactly. The
+ *        curvature is the same fit's, held fixed: 2 (grad f . a)^2 + 2 f f''|a|^2 (f'' its
+ *        NormalFit::secondDerivative), so the end point's type costs no further fit.
  */
 class NormalFitEnergy : public Energy
 {

@@ -75,6 +75,7 @@ NormalFit sphereFit(const Neighbourhood& nb, const SurfaceParameters& params)
   out.value = u0;
   out.gradient = ul;
   out.step = (-2.0 * u0 / (1.0 + g)) * (ul / g);
+  out.secondDerivative = 2.0 * uq / norm;
   out.stability = stability;
   out.defined = true;
   return out;
@@ -222,8 +223,10 @@ LineSample NormalFitEnergy::lineSample(const Vec3& y, const Vec3& a, Workspace& 
   const NormalFit f = fitWithNormals(Kind, Index, Params, y, ws);
   LineSample out;
   out.nearestSqDist = ws.query.minSqDist;
+  const double along = f.gradient.dot(a);
   out.value = f.value * f.value;
-  out.slope = 2.0 * f.value * f.gradient.dot(a);
+  out.slope = 2.0 * f.value * along;
+  out.curvature = 2.0 * (along * along + f.value * f.secondDerivative * a.squaredNorm());
   return out;
 }
 
