@@ -199,6 +199,16 @@ LineMoments lineMoments(const Neighbourhood& nb, const Vec3& a);
 /// sum_i w_i (p_i - y - m)(p_i - y - m)^T with the shifted weights (m an offset from y).
 Mat3 weightedScatter(const Neighbourhood& nb, const Vec3& m);
 
+/// The weighted sums (shifted weights) an algebraic sphere is fitted from, in one pass over a
+/// neighbourhood with normals: sum_i w_i n_i, sum_i w_i r_i . n_i and sum_i w_i |r_i|^2 (r_i = p_i - y).
+struct OrientedMoments
+{
+  Vec3 normal = Vec3::Zero();
+  double offsetAlongNormal = 0.0;
+  double squaredOffset = 0.0;
+};
+OrientedMoments orientedMoments(const Neighbourhood& nb);
+
 /// sum_i w_i (p_i - y)(p_i - y)^T (shifted weights): Levin's C(y), up to the factor exp(logScale).
 Mat3 covarianceAboutQuery(const Neighbourhood& nb);
 

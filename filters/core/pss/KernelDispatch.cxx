@@ -441,6 +441,33 @@ PSS_KERNEL_INLINE void momentsBody(const double* weight, const double* dx, const
   out[3] = lanesSum(m4);
 }
 
+// The sums of the algebraic sphere's fit: out[] = {sum w n_x, sum w n_y, sum w n_z, sum w r . n,
+// sum w |r|^2} with r = (dx, dy, dz) (the padding's zero offsets and normals add nothing).
+PSS_KERNEL_INLINE void orientedMomentsBody(const double* weight, const double* dx, const double* dy, const double* dz,
+  const double* nx, const double* ny, const double* nz, Eigen::Index count, double* out)
+{
+  VecD sx{}, sy{}, sz{}, rn{}, rr{};
+  for (Eigen::Index i = 0; i < count; i += SimdLanes)
+  {
+    const VecD w = load(weight + i);
+    const VecD x = load(dx + i);
+    const VecD y = load(dy + i);
+    const VecD z = load(dz + i);
+    const VecD wx = w * load(nx + i);
+    const VecD wy = w * load(ny + i);
+    const VecD wz = w * load(nz + i);
+    sx += wx;
+    sy += wy;
+    sz += wz;
+    rn += wx * x + wy * y + wz * z;
+    rr += w * (x * x + y * y + z * z);
+  }
+  out[0] = lanesSum(sx);
+  out[1] = lanesSum(sy);
+  out[2] = lanesSum(sz);
+  out[3] = lanesSum(rn);
+  out[4] = lanesSum(rr);
+}
 
 #define PSS_KERNEL_COPIES(SUFFIX, TARGET)                                                                        \
   TARGET void weights##SUFFIX(const double* sqDist, const double* dx, const double* dy, const double* dz,          \
@@ -466,6 +493,11 @@ PSS_KERNEL_INLINE void momentsBody(const double* weight, const double* dx, const
     Eigen::Index count, double ax, double ay, double az, double* s)                                              \
   {                                                                                                              \
     momentsBody(w, dx, dy, dz, count, ax, ay, az, s);                                                            \
+  }                                                                                                              \
+  TARGET void orientedMoments##SUFFIX(const double* w, const double* dx, const double* dy, const double* dz,     \
+    const double* nx, const double* ny, const double* nz, Eigen::Index count, double* s)                         \
+  {                                                                                                              \
+    orientedMomentsBody(w, dx, dy, dz, nx, ny, nz, count, s);                                                    \
   }
 
 #if defined(PSS_CORE_COPY_X86_64_V3)
@@ -478,7 +510,7 @@ PSS_KERNEL_COPIES(V3, )
 const KernelTable& kernels()
 {
   static const KernelTable table{ "x86-64-v3", compactCandidatesAvx2, weightsV3, expV3, scatterV3, momentsV3,
-    compactScaledCandidatesAvx2, scaledWeightsV3 };
+    compactScaledCandidatesAvx2, scaledWeightsV3, orientedMomentsV3 };
   return table;
 }
 #else
@@ -493,10 +525,10 @@ const KernelTable& kernels()
 {
   static const KernelTable table = [] {
     const KernelTable baseline{ "baseline", compactCandidatesBaseline, weightsBaseline, expBaseline,
-      scatterBaseline, momentsBaseline, compactScaledBaseline, scaledWeightsBaseline };
+      scatterBaseline, momentsBaseline, compactScaledBaseline, scaledWeightsBaseline, orientedMomentsBaseline };
 #if PSS_KERNEL_DISPATCH
     const KernelTable avx2{ "avx2", compactCandidatesAvx2, weightsAvx2, expAvx2, scatterAvx2, momentsAvx2,
-      compactScaledCandidatesAvx2, scaledWeightsAvx2 };
+      compactScaledCandidatesAvx2, scaledWeightsAvx2, orientedMomentsAvx2 };
     const char* forced = std::getenv("PSS_SIMD");
     if (forced && std::strcmp(forced, "baseline") == 0)
     {

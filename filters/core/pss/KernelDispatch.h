@@ -57,6 +57,8 @@ struct KernelTable
     double*);
   Eigen::Index (*compactScaled)(const ScaledCandidates&, const Vec3&, double, double, Neighbourhood&);
   void (*scaledWeights)(const double*, const double*, const double*, const double*, double*, Eigen::Index, double*);
+  void (*orientedMoments)(const double*, const double*, const double*, const double*, const double*, const double*,
+    const double*, Eigen::Index, double*);
 };
 
 /// The copy of the kernels in use: AVX2 when the CPU has it, unless PSS_SIMD=baseline.

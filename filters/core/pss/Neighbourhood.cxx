@@ -277,6 +277,18 @@ Mat3 weightedScatter(const Neighbourhood& nb, const Vec3& m)
   return c;
 }
 
+OrientedMoments orientedMoments(const Neighbourhood& nb)
+{
+  double s[5];
+  kernels().orientedMoments(nb.weight.data(), nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.nx.data(), nb.ny.data(),
+    nb.nz.data(), nb.count, s);
+  OrientedMoments out;
+  out.normal = Vec3(s[0], s[1], s[2]);
+  out.offsetAlongNormal = s[3];
+  out.squaredOffset = s[4];
+  return out;
+}
+
 LineMoments lineMoments(const Neighbourhood& nb, const Vec3& a)
 {
   double s[4];

@@ -15,14 +15,6 @@ namespace pss
 namespace
 {
 
-// Sums over the neighbourhood in local coordinates (r_i = p_i - x); the shifted weights suffice,
-// every quantity below being a ratio of sums.
-Vec3 weightedNormalSum(const Neighbourhood& nb, const Eigen::Ref<const Eigen::ArrayXd>& w)
-{
-  const Eigen::Index c = nb.count;
-  return Vec3((w * nb.nx.head(c)).sum(), (w * nb.ny.head(c)).sum(), (w * nb.nz.head(c)).sum());
-}
-
 double clampedStability(double s)
 {
   return s > 0.0 ? std::min(s, 1.0) : 0.0;
@@ -44,14 +36,13 @@ NormalFit undefinedFit(double stability)
 NormalFit sphereFit(const Neighbourhood& nb, const SurfaceParameters& params)
 {
   const double W = nb.weightSum;
-  const auto w = nb.w();
+  const OrientedMoments sums = orientedMoments(nb);
   const Vec3 P = nb.moment / W;
-  const Vec3 N = weightedNormalSum(nb, w) / W;
+  const Vec3 N = sums.normal / W;
   // Within [0, 1] (rounding can carry a mean of unit vectors a hair past 1); NaN counts as 0.
   const double stability = clampedStability(N.norm());
-  const Eigen::Index c = nb.count;
-  const double meanRN = (w * (nb.x() * nb.nx.head(c) + nb.y() * nb.ny.head(c) + nb.z() * nb.nz.head(c))).sum() / W;
-  const double meanRR = (w * nb.d2()).sum() / W;
+  const double meanRN = sums.offsetAlongNormal / W;
+  const double meanRR = sums.squaredOffset / W;
   const double spread = meanRR - P.squaredNorm(); // the weighted variance of the positions
   const double scale = nb.localScale;
   // No spread (a single point, coincident points): the plane through them, normal to N.
