@@ -209,6 +209,25 @@ struct OrientedMoments
 };
 OrientedMoments orientedMoments(const Neighbourhood& nb);
 
+/// RIMLS's refit factors, robust[i] = exp(min(0, -(f_i - f)^2 residualFactor - |n_i - g|^2
+/// normalFactor)) with f_i = (y - p_i) . n_i, for the neighbours (and the padding) of @p nb, which
+/// must carry normals; @p robust needs room for size() plus one vector.
+void robustFactors(const Neighbourhood& nb, double f, const Vec3& g, double residualFactor, double normalFactor,
+  double* robust);
+
+/// RIMLS's sums for one fit, in one pass: with w_i the shifted weight (times robust[i] unless
+/// @p robust is null), k_i = 1 / h_i^2 and f_i = (y - p_i) . n_i: sum w, sum w f_i, sum 2 w k r,
+/// sum 2 w k f_i r and sum w n (r_i = p_i - y).
+struct RobustSums
+{
+  double weight = 0.0;
+  double value = 0.0;
+  Vec3 offset = Vec3::Zero();
+  Vec3 valueOffset = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();
+};
+RobustSums robustSums(const Neighbourhood& nb, const double* robust);
+
 /// sum_i w_i (p_i - y)(p_i - y)^T (shifted weights): Levin's C(y), up to the factor exp(logScale).
 Mat3 covarianceAboutQuery(const Neighbourhood& nb);
 

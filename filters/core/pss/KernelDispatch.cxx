@@ -469,6 +469,70 @@ PSS_KERNEL_INLINE void orientedMomentsBody(const double* weight, const double* d
   out[4] = lanesSum(rr);
 }
 
+// RIMLS's robust factors (its refits): robust[i] = exp(min(0, -(f_i - f)^2 rf - |n_i - g|^2 nf)) with
+// f_i = -(r_i . n_i), over whole vectors (the padding's values are finite and weigh 0).
+PSS_KERNEL_INLINE void robustFactorsBody(const double* dx, const double* dy, const double* dz, const double* nx,
+  const double* ny, const double* nz, Eigen::Index count, const double* fit, double* robust)
+{
+  const VecD f = splat(fit[0]);
+  const VecD gx = splat(fit[1]);
+  const VecD gy = splat(fit[2]);
+  const VecD gz = splat(fit[3]);
+  const VecD gg = splat(fit[4]);
+  const VecD rf = splat(fit[5]);
+  const VecD nf = splat(fit[6]);
+  for (Eigen::Index i = 0; i < count; i += SimdLanes)
+  {
+    const VecD x = load(nx + i);
+    const VecD y = load(ny + i);
+    const VecD z = load(nz + i);
+    const VecD residual = -(load(dx + i) * x + load(dy + i) * y + load(dz + i) * z) - f;
+    const VecD normalGap = 1.0 - 2.0 * (x * gx + y * gy + z * gz) + gg;
+    const VecD e = -residual * residual * rf - normalGap * nf;
+    store(robust + i, expNonPositive(e < 0.0 ? e : VecD{}));
+  }
+}
+
+// RIMLS's sums for one fit, with w_i = weight_i (times robust_i when given) and wk_i = 2 w_i k_i
+// (k_i from @p k when given, else @p k0): out[] = {sum w, sum w f_i, sum wk r (3), sum wk f_i r (3),
+// sum w n (3)}, f_i = -(r_i . n_i).
+PSS_KERNEL_INLINE void robustSumsBody(const double* weight, const double* robust, const double* k, double k0,
+  const double* dx, const double* dy, const double* dz, const double* nx, const double* ny, const double* nz,
+  Eigen::Index count, double* out)
+{
+  VecD sw{}, sf{}, gx{}, gy{}, gz{}, fx{}, fy{}, fz{}, sx{}, sy{}, sz{};
+  const VecD constantK = splat(2.0 * k0);
+  for (Eigen::Index i = 0; i < count; i += SimdLanes)
+  {
+    const VecD w = robust ? load(weight + i) * load(robust + i) : load(weight + i);
+    const VecD wk = k ? 2.0 * w * load(k + i) : w * constantK;
+    const VecD x = load(dx + i);
+    const VecD y = load(dy + i);
+    const VecD z = load(dz + i);
+    const VecD nxi = load(nx + i);
+    const VecD nyi = load(ny + i);
+    const VecD nzi = load(nz + i);
+    const VecD fi = -(x * nxi + y * nyi + z * nzi);
+    sw += w;
+    sf += w * fi;
+    gx += wk * x;
+    gy += wk * y;
+    gz += wk * z;
+    const VecD wkf = wk * fi;
+    fx += wkf * x;
+    fy += wkf * y;
+    fz += wkf * z;
+    sx += w * nxi;
+    sy += w * nyi;
+    sz += w * nzi;
+  }
+  const VecD all[11] = { sw, sf, gx, gy, gz, fx, fy, fz, sx, sy, sz };
+  for (int j = 0; j < 11; ++j)
+  {
+    out[j] = lanesSum(all[j]);
+  }
+}
+
 #define PSS_KERNEL_COPIES(SUFFIX, TARGET)                                                                        \
   TARGET void weights##SUFFIX(const double* sqDist, const double* dx, const double* dy, const double* dz,          \
     double* weight, Eigen::Index padded, double minSq, double invH2, double* sums)                                \
@@ -498,6 +562,17 @@ PSS_KERNEL_INLINE void orientedMomentsBody(const double* weight, const double* d
     const double* nx, const double* ny, const double* nz, Eigen::Index count, double* s)                         \
   {                                                                                                              \
     orientedMomentsBody(w, dx, dy, dz, nx, ny, nz, count, s);                                                    \
+  }                                                                                                              \
+  TARGET void robustFactors##SUFFIX(const double* dx, const double* dy, const double* dz, const double* nx,      \
+    const double* ny, const double* nz, Eigen::Index count, const double* fit, double* robust)                   \
+  {                                                                                                              \
+    robustFactorsBody(dx, dy, dz, nx, ny, nz, count, fit, robust);                                               \
+  }                                                                                                              \
+  TARGET void robustSums##SUFFIX(const double* w, const double* robust, const double* k, double k0,              \
+    const double* dx, const double* dy, const double* dz, const double* nx, const double* ny, const double* nz,   \
+    Eigen::Index count, double* out)                                                                             \
+  {                                                                                                              \
+    robustSumsBody(w, robust, k, k0, dx, dy, dz, nx, ny, nz, count, out);                                        \
   }
 
 #if defined(PSS_CORE_COPY_X86_64_V3)
@@ -510,7 +585,8 @@ PSS_KERNEL_COPIES(V3, )
 const KernelTable& kernels()
 {
   static const KernelTable table{ "x86-64-v3", compactCandidatesAvx2, weightsV3, expV3, scatterV3, momentsV3,
-    compactScaledCandidatesAvx2, scaledWeightsV3, orientedMomentsV3 };
+    compactScaledCandidatesAvx2, scaledWeightsV3, orientedMomentsV3,
+    robustFactorsV3, robustSumsV3 };
   return table;
 }
 #else
@@ -525,10 +601,12 @@ const KernelTable& kernels()
 {
   static const KernelTable table = [] {
     const KernelTable baseline{ "baseline", compactCandidatesBaseline, weightsBaseline, expBaseline,
-      scatterBaseline, momentsBaseline, compactScaledBaseline, scaledWeightsBaseline, orientedMomentsBaseline };
+      scatterBaseline, momentsBaseline, compactScaledBaseline, scaledWeightsBaseline, orientedMomentsBaseline,
+      robustFactorsBaseline, robustSumsBaseline };
 #if PSS_KERNEL_DISPATCH
     const KernelTable avx2{ "avx2", compactCandidatesAvx2, weightsAvx2, expAvx2, scatterAvx2, momentsAvx2,
-      compactScaledCandidatesAvx2, scaledWeightsAvx2, orientedMomentsAvx2 };
+      compactScaledCandidatesAvx2, scaledWeightsAvx2, orientedMomentsAvx2,
+      robustFactorsAvx2, robustSumsAvx2 };
     const char* forced = std::getenv("PSS_SIMD");
     if (forced && std::strcmp(forced, "baseline") == 0)
     {

@@ -59,6 +59,10 @@ struct KernelTable
   void (*scaledWeights)(const double*, const double*, const double*, const double*, double*, Eigen::Index, double*);
   void (*orientedMoments)(const double*, const double*, const double*, const double*, const double*, const double*,
     const double*, Eigen::Index, double*);
+  void (*robustFactors)(const double*, const double*, const double*, const double*, const double*, const double*,
+    Eigen::Index, const double*, double*);
+  void (*robustSums)(const double*, const double*, const double*, double, const double*, const double*,
+    const double*, const double*, const double*, const double*, Eigen::Index, double*);
 };
 
 /// The copy of the kernels in use: AVX2 when the CPU has it, unless PSS_SIMD=baseline.

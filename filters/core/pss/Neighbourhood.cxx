@@ -289,6 +289,28 @@ OrientedMoments orientedMoments(const Neighbourhood& nb)
   return out;
 }
 
+void robustFactors(const Neighbourhood& nb, double f, const Vec3& g, double residualFactor, double normalFactor,
+  double* robust)
+{
+  const double fit[7] = { f, g.x(), g.y(), g.z(), g.squaredNorm(), residualFactor, normalFactor };
+  kernels().robustFactors(
+    nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.nx.data(), nb.ny.data(), nb.nz.data(), nb.count, fit, robust);
+}
+
+RobustSums robustSums(const Neighbourhood& nb, const double* robust)
+{
+  double s[11];
+  kernels().robustSums(nb.weight.data(), robust, nb.scaled ? nb.inverseSqScale.data() : nullptr, nb.invH2,
+    nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.nx.data(), nb.ny.data(), nb.nz.data(), nb.count, s);
+  RobustSums out;
+  out.weight = s[0];
+  out.value = s[1];
+  out.offset = Vec3(s[2], s[3], s[4]);
+  out.valueOffset = Vec3(s[5], s[6], s[7]);
+  out.normal = Vec3(s[8], s[9], s[10]);
+  return out;
+}
+
 LineMoments lineMoments(const Neighbourhood& nb, const Vec3& a)
 {
   double s[4];

@@ -76,70 +76,34 @@ NormalFit sphereFit(const Neighbourhood& nb, const SurfaceParameters& params)
 // (k_i = 1 / h_i^2), whose gradient is 2 k_i w_i r_i. Each refit multiplies the weights by
 // exp(-((f_i - f) / (sigma_r h))^2 - (|n_i - grad f| / sigma_n)^2) with f_i = (x - p_i) . n_i and
 // f, grad f of the previous fit: points far off the others' surface, and normals across a sharp
-// edge, count less. A fixed number of refits keeps f continuous in x. Each fit is one pass over
-// the neighbours; @p inverseSqScale(i) is k_i.
-template <class InverseSqScale>
-NormalFit robustFit(Neighbourhood& nb, const SurfaceParameters& params, InverseSqScale inverseSqScale)
+// edge, count less. A fixed number of refits keeps f continuous in x. Each fit is one vector pass
+// over the neighbours (robustSums), each refit's factors another (robustFactors).
+NormalFit robustFit(Neighbourhood& nb, const SurfaceParameters& params)
 {
-  const Eigen::Index c = nb.count;
-  const double* rx = nb.dx.data();
-  const double* ry = nb.dy.data();
-  const double* rz = nb.dz.data();
-  const double* nx = nb.nx.data();
-  const double* ny = nb.ny.data();
-  const double* nz = nb.nz.data();
-  const double* w = nb.weight.data();
-  // The refits' weights: their exponents (never positive) then expNonPositive, several at a time.
-  double* robust = nb.robust.data();
   const double sigmaR = params.sigmaResidual * nb.localScale;
   const double residualFactor = 1.0 / (sigmaR * sigmaR);
   const double normalFactor = 1.0 / (params.sigmaNormal * params.sigmaNormal);
   double f = 0.0;
   Vec3 grad = Vec3::Zero();
-  double W = 0.0;
-  Vec3 sumN = Vec3::Zero();
+  RobustSums sums;
   for (int refit = 0; refit <= params.robustRefits; ++refit)
   {
-    const double gg = grad.squaredNorm();
+    const double* robust = nullptr;
     if (refit > 0)
     {
-      for (Eigen::Index i = 0; i < c; ++i)
-      {
-        const double residual = -(rx[i] * nx[i] + ry[i] * ny[i] + rz[i] * nz[i]) - f;
-        const double normalGap = 1.0 - 2.0 * (nx[i] * grad.x() + ny[i] * grad.y() + nz[i] * grad.z()) + gg;
-        robust[i] = std::min(0.0, -residual * residual * residualFactor - normalGap * normalFactor);
-      }
-      expNonPositive(robust, robust, c);
+      robustFactors(nb, f, grad, residualFactor, normalFactor, nb.robust.data());
+      robust = nb.robust.data();
     }
-    double sumW = 0.0, sumF = 0.0;
-    double sumG[3] = { 0.0, 0.0, 0.0 }, sumGF[3] = { 0.0, 0.0, 0.0 }, sumNormal[3] = { 0.0, 0.0, 0.0 };
-    for (Eigen::Index i = 0; i < c; ++i)
-    {
-      const double fi = -(rx[i] * nx[i] + ry[i] * ny[i] + rz[i] * nz[i]); // (x - p_i) . n_i
-      const double wi = refit > 0 ? w[i] * robust[i] : w[i];
-      const double wk = 2.0 * wi * inverseSqScale(i);
-      sumW += wi;
-      sumF += wi * fi;
-      sumG[0] += wk * rx[i];
-      sumG[1] += wk * ry[i];
-      sumG[2] += wk * rz[i];
-      sumGF[0] += wk * fi * rx[i];
-      sumGF[1] += wk * fi * ry[i];
-      sumGF[2] += wk * fi * rz[i];
-      sumNormal[0] += wi * nx[i];
-      sumNormal[1] += wi * ny[i];
-      sumNormal[2] += wi * nz[i];
-    }
-    W = sumW;
+    sums = robustSums(nb, robust);
+    const double W = sums.weight;
     if (!(W > 0.0) || !std::isfinite(W))
     {
       return undefinedFit(0.0);
     }
-    f = sumF / W;
-    sumN = Vec3(sumNormal[0], sumNormal[1], sumNormal[2]);
-    grad = (Vec3(sumGF[0], sumGF[1], sumGF[2]) - f * Vec3(sumG[0], sumG[1], sumG[2]) + sumN) / W;
+    f = sums.value / W;
+    grad = (sums.valueOffset - f * sums.offset + sums.normal) / W;
   }
-  const double stability = clampedStability(sumN.norm() / W);
+  const double stability = clampedStability(sums.normal.norm() / sums.weight);
   const double g = grad.norm();
   if (!(g > 0.0) || !std::isfinite(g) || !std::isfinite(f) || !(stability > params.minStability))
   {
@@ -161,17 +125,7 @@ NormalFit fitWithNormals(
 {
   Neighbourhood& nb = ws.query;
   gatherOrientedNeighbourhood(index, params, x, nb, ws);
-  if (kind == NormalFitKind::AlgebraicSphere)
-  {
-    return sphereFit(nb, params);
-  }
-  if (nb.scaled)
-  {
-    const double* k = nb.inverseSqScale.data();
-    return robustFit(nb, params, [k](Eigen::Index i) { return k[i]; });
-  }
-  const double k = nb.invH2;
-  return robustFit(nb, params, [k](Eigen::Index) { return k; });
+  return kind == NormalFitKind::AlgebraicSphere ? sphereFit(nb, params) : robustFit(nb, params);
 }
 
 NormalFitDirection::NormalFitDirection(const PointIndex& index, const SurfaceParameters& params, NormalFitKind kind)
