@@ -1,6 +1,7 @@
 # cmake -DPSS=build/bin/pss -DWORK=dir -DPYTHON=python3 -DCOPIES=ON|OFF -DBASELINE_ENV=VAR=VALUE
 #   -P CompareCopies.cmake:
-# the pss tool projects the same cloud (three definitions) with each build of the core it has.
+# the pss tool projects the same cloud (five definitions: APSS and RIMLS with the normals it estimates)
+# with each build of the core it has.
 # - The baseline copy (the loader takes it with BASELINE_ENV: GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2)
 #   with its SSE2 kernels (PSS_SIMD=baseline) and with its AVX2 kernels: the same bytes (both
 #   compute with four-double vectors and no fused multiply-add, see pss/KernelDispatch.cxx).
@@ -43,7 +44,7 @@ if(COPIES)
   endif()
 endif()
 
-foreach(variant com integral levin)
+foreach(variant com integral levin apss rimls)
   set(args project "${WORK}/cloud.csv" --variant ${variant} --h 2 --threads 2)
   foreach(isa baseline avx2)
     pss_run(ignored ENV ${BASELINE_ENV} PSS_SIMD=${isa} ARGS ${args} -o "${WORK}/${variant}-${isa}.csv")
@@ -56,7 +57,11 @@ foreach(variant com integral levin)
   message(STATUS "--variant ${variant}: the baseline copy's SSE2 and AVX2 kernels agree bitwise")
   if(check_v3)
     pss_run(ignored ARGS ${args} -o "${WORK}/${variant}-v3.csv")
-    execute_process(COMMAND "${PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_outputs.py" --h 2
+    set(energy_unit)
+    if(variant MATCHES "apss|rimls")
+      set(energy_unit --energy-in-h2) # f^2: rounding noise at every converged end point
+    endif()
+    execute_process(COMMAND "${PYTHON}" "${CMAKE_CURRENT_LIST_DIR}/compare_outputs.py" --h 2 ${energy_unit}
         "${WORK}/${variant}-baseline.csv" "${WORK}/${variant}-v3.csv" RESULT_VARIABLE rc OUTPUT_VARIABLE report)
     message(STATUS "--variant ${variant}, baseline against x86-64-v3:\n${report}")
     if(NOT rc EQUAL 0)

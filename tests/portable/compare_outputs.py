@@ -4,10 +4,13 @@ x86-64 baseline and x86-64-v3, whose fused multiply-adds round differently): the
 columns, the same integer columns (Iterations, Converged, ExtremumType, StopReason), every other
 value within a tolerance. Prints the largest differences; exit 0 when they agree.
 
-    compare_outputs.py --h H [--tolerance T] BASELINE.csv V3.csv
+    compare_outputs.py --h H [--tolerance T] [--energy-in-h2] BASELINE.csv V3.csv
 
 Coordinates and displacements must agree within T * h, normals, stabilities and the other
-unitless columns within T, energies within T relative to the largest energy of the file.
+unitless columns within T, energies within T relative to the largest energy of the file, or with
+--energy-in-h2 within T * h^2: for definitions whose energy is a squared length that vanishes on
+the surface (APSS and RIMLS: f^2), so that every energy of a converged projection is rounding
+noise and the largest one is no scale.
 """
 import argparse
 import csv
@@ -21,6 +24,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--h", type=float, required=True)
     parser.add_argument("--tolerance", type=float, default=1e-10)
+    parser.add_argument("--energy-in-h2", action="store_true")
     parser.add_argument("baseline")
     parser.add_argument("v3")
     args = parser.parse_args()
@@ -32,6 +36,8 @@ def main():
         print("FAIL: the files differ in rows or columns (%d and %d rows)" % (len(a), len(b)))
         return 1
     energy_scale = max(abs(float(r["Energy"])) for r in a) if "Energy" in a[0] else 1.0
+    if args.energy_in_h2:
+        energy_scale = args.h * args.h
     worst = {}
     failed = False
     for row, (r, s) in enumerate(zip(a, b)):
