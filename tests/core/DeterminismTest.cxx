@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // projectAll's results, and the index they run on, must not depend on the number of threads
-// (Parallel.h / ExtremalSurface.h / PointIndex.h).
+// (Parallel.h / ExtremalSurface.h / PointIndex.h), nor on which thread computed the delta lattice's
+// shared nodes (DeltaLattice.h).
 
 #include "TestClouds.h"
 
@@ -345,4 +346,89 @@ TEST(Determinism, CloudNormalsSharedByThreadsAreTheUncachedOnes)
     ASSERT_EQ(got[k].stability, truth.stability) << i;
     ASSERT_GT(std::abs(got[k].n.z()), 1.0 - 1e-12) << i;
   }
+}
+
+namespace
+{
+
+// @p starts projected twice over on 2 threads, each thread running through the whole list in the
+// same order (parallelFor's parts are contiguous), so the threads race for the same lattice
+// nodes all along; each result must be the one-thread run's, bit for bit.
+void expectRacingThreadsAgree(const SurfaceDefinition& surface, const std::vector<Vec3>& starts)
+{
+  ProjectionOptions options;
+  const std::vector<ProjectionResult> one = projectAll(surface, starts, options, 1);
+  const std::size_t n = starts.size();
+  std::vector<ProjectionResult> got(2 * n);
+  parallelFor(2 * n, 2, [&](std::size_t begin, std::size_t end, Workspace& worker) {
+    for (std::size_t k = begin; k < end; ++k)
+    {
+      got[k] = project(surface, starts[k % n], options, worker);
+    }
+  });
+  for (std::size_t k = 0; k < 2 * n; ++k)
+  {
+    const ProjectionResult& truth = one[k % n];
+    ASSERT_EQ(0, std::memcmp(got[k].point.data(), truth.point.data(), sizeof(double) * 3)) << k;
+    ASSERT_EQ(got[k].direction.stability, truth.direction.stability) << k;
+    ASSERT_EQ(got[k].iterations, truth.iterations) << k;
+    ASSERT_EQ(got[k].reason, truth.reason) << k;
+  }
+}
+
+} // namespace
+
+// The delta lattice's nodes are shared by the threads that read them (DeltaLattice.h): whichever
+// thread computes a node, the others read the same bits, on a sphere patch where both threads
+// need the same nodes at the same time.
+TEST(Determinism, LatticeNodesSharedByThreadsChangeNoBit)
+{
+  const double h = 1.0;
+  const std::vector<Vec3> cloud = sceneCloud(Scene::Sphere, 3, 3000, 14.0, 0.02);
+  const PointIndex index(cloud, 3);
+  // The cloud points within 3 h of its top, moved off the surface.
+  double top = -1e300;
+  for (const Vec3& p : cloud)
+  {
+    top = std::max(top, p.z());
+  }
+  std::vector<Vec3> starts;
+  for (const Vec3& p : cloud)
+  {
+    if (p.z() > top - 3.0 * h)
+    {
+      starts.push_back(p + Vec3(0.1, -0.2, 0.3) * h);
+    }
+  }
+  ASSERT_GE(starts.size(), 60u);
+  SurfaceParameters p = params(h);
+  p.deltaLattice = 0.5;
+  expectRacingThreadsAgree(*makeSurface(Variant::Integral, index, p), starts);
+}
+
+// A run that needs more bricks than the shared table holds (LatticeCache::MaxBricks): the table
+// forgets bricks that another thread may still be reading, and is asked for them again. A
+// straight line 8,800 h long, starts 0.3 h off it every 2 h (over 2,000 bricks of starts alone):
+// every end point on the line, the same bits on 1 and 2 threads.
+TEST(Determinism, LatticeTableForgetsBricksUnderThreads)
+{
+  const double h = 1.0;
+  const std::vector<Vec3> cloud = lineCloud(4400.0 * h, 0.5 * h);
+  const PointIndex index(cloud, 2);
+  std::vector<Vec3> starts;
+  for (double x = -4390.0 * h; x <= 4390.0 * h; x += 2.0 * h)
+  {
+    starts.emplace_back(x, 0.3 * h, 0.0);
+  }
+  SurfaceParameters p = params(h);
+  p.deltaLattice = 0.5;
+  ASSERT_GT(latticeBrickKeys(starts, index, p).size(), LatticeCache::MaxBricks);
+  const auto surface = makeSurface(Variant::Integral, index, p);
+  const std::vector<ProjectionResult> two = projectAll(*surface, starts, ProjectionOptions(), 2);
+  for (std::size_t i = 0; i < starts.size(); ++i)
+  {
+    ASSERT_EQ(two[i].reason, StopReason::Converged) << i;
+    ASSERT_LT(std::abs(two[i].point.y()), 1e-3 * h) << i;
+  }
+  expectRacingThreadsAgree(*surface, starts);
 }

@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <mutex>
+#include <thread>
 
 namespace pss
 {
@@ -57,12 +60,105 @@ std::size_t LatticeCache::BrickHash::operator()(const BrickKey& key) const
   return static_cast<std::size_t>(x);
 }
 
+LatticeCache::Brick::Brick()
+{
+  // std::atomic's default constructor leaves the value unset (C++17).
+  for (std::atomic<std::uint8_t>& node : state)
+  {
+    node.store(Empty, std::memory_order_relaxed);
+  }
+}
+
 void LatticeCache::clear()
 {
-  bricks.clear();
-  storage.clear();
-  hasLast = false;
+  table.reset();
+  seen.clear();
+  lastBrick = nullptr;
 }
+
+/**
+ * The lattice nodes of one index, h, cutoff and spacing, shared by every workspace that reads
+ * them (each holds the table through LatticeCache). The map is guarded by a mutex, a node's data
+ * by its state (LatticeCache::Brick). Bricks are shared with the workspaces that looked them up,
+ * so forgetting one here never frees it under a reader.
+ */
+class LatticeTable
+{
+public:
+  LatticeTable(std::uint64_t serial, double h, double cutoff, double spacing)
+    : Serial(serial)
+    , H(h)
+    , Cutoff(cutoff)
+    , Spacing(spacing)
+  {
+  }
+
+  /// The table of this lattice: the one some workspace already reads, else a new one.
+  static std::shared_ptr<LatticeTable> of(std::uint64_t serial, double h, double cutoff, double spacing)
+  {
+    static std::mutex registryMutex;
+    static std::vector<std::weak_ptr<LatticeTable>> registry;
+    const std::lock_guard<std::mutex> lock(registryMutex);
+    registry.erase(std::remove_if(registry.begin(), registry.end(),
+                     [](const std::weak_ptr<LatticeTable>& t) { return t.expired(); }),
+      registry.end());
+    for (const std::weak_ptr<LatticeTable>& weak : registry)
+    {
+      std::shared_ptr<LatticeTable> table = weak.lock();
+      if (table && table->serves(serial, h, cutoff, spacing))
+      {
+        return table;
+      }
+    }
+    auto table = std::make_shared<LatticeTable>(serial, h, cutoff, spacing);
+    registry.push_back(table);
+    return table;
+  }
+
+  bool serves(std::uint64_t serial, double h, double cutoff, double spacing) const
+  {
+    return Serial == serial && H == h && Cutoff == cutoff && Spacing == spacing;
+  }
+
+  /// The brick of @p key, added (empty) when absent; a full table first forgets the oldest
+  /// quarter of its bricks (their nodes are computed again if asked for after that).
+  std::shared_ptr<LatticeCache::Brick> add(const LatticeCache::BrickKey& key)
+  {
+    const std::lock_guard<std::mutex> lock(Mutex);
+    auto found = Bricks.find(key);
+    if (found == Bricks.end())
+    {
+      if (Bricks.size() >= LatticeCache::MaxBricks)
+      {
+        for (std::size_t n = 0; n < LatticeCache::MaxBricks / 4; ++n)
+        {
+          Bricks.erase(Order.front());
+          Order.pop_front();
+        }
+      }
+      found = Bricks.emplace(key, std::make_shared<LatticeCache::Brick>()).first;
+      Order.push_back(key);
+    }
+    return found->second;
+  }
+
+  /// The brick of @p key, or nullptr.
+  std::shared_ptr<LatticeCache::Brick> find(const LatticeCache::BrickKey& key)
+  {
+    const std::lock_guard<std::mutex> lock(Mutex);
+    const auto found = Bricks.find(key);
+    return found == Bricks.end() ? nullptr : found->second;
+  }
+
+private:
+  const std::uint64_t Serial;
+  const double H;
+  const double Cutoff;
+  const double Spacing;
+  std::mutex Mutex;
+  std::unordered_map<LatticeCache::BrickKey, std::shared_ptr<LatticeCache::Brick>, LatticeCache::BrickHash> Bricks;
+  std::deque<LatticeCache::BrickKey> Order; ///< Bricks' keys, oldest first
+};
 
 double DeltaLattice::spacingFor(const PointIndex& index, const SurfaceParameters& params)
 {
@@ -79,33 +175,62 @@ DeltaLattice::DeltaLattice(const DistanceField& field)
 LatticeCache::Brick& DeltaLattice::brickAt(const LatticeCache::BrickKey& key, Workspace& ws) const
 {
   LatticeCache& cache = ws.lattice;
-  if (!cache.hasLast || !(cache.lastKey == key))
+  if (cache.lastBrick && cache.lastKey == key)
   {
-    const auto found = cache.bricks.find(key);
-    std::uint32_t b = 0;
-    if (found != cache.bricks.end())
-    {
-      b = found->second;
-    }
-    else
-    {
-      if (cache.storage.size() >= LatticeCache::MaxBricks)
-      {
-        cache.clear();
-      }
-      b = static_cast<std::uint32_t>(cache.storage.size());
-      cache.storage.emplace_back();
-      cache.storage.back().state.fill(0);
-      cache.bricks.emplace(key, b);
-    }
-    cache.lastKey = key;
-    cache.lastBrick = b;
-    cache.hasLast = true;
+    return *cache.lastBrick;
   }
-  return cache.storage[cache.lastBrick];
+  auto found = cache.seen.find(key);
+  if (found == cache.seen.end())
+  {
+    if (cache.seen.size() >= LatticeCache::MaxSeen)
+    {
+      cache.seen.clear();
+      cache.lastBrick = nullptr;
+    }
+    found = cache.seen.emplace(key, cache.table->add(key)).first;
+  }
+  LatticeCache::Brick* brick = found->second.get();
+  cache.lastKey = key;
+  cache.lastBrick = brick;
+  return *brick;
 }
 
-void DeltaLattice::computeNode(
+std::uint8_t DeltaLattice::readyNode(
+  LatticeCache::Brick& brick, const LatticeCache::BrickKey& key, int local, Workspace& ws) const
+{
+  std::atomic<std::uint8_t>& state = brick.state[local];
+  for (;;)
+  {
+    std::uint8_t seen = state.load(std::memory_order_acquire);
+    if (seen == LatticeCache::Ready || seen == LatticeCache::ReadyFromBeyond)
+    {
+      return seen;
+    }
+    if (seen == LatticeCache::Empty && state.compare_exchange_strong(seen, LatticeCache::Busy, std::memory_order_acquire))
+    {
+      std::uint8_t ready = LatticeCache::Empty;
+      try
+      {
+        ready = computeNode(brick, key, local, ws);
+      }
+      catch (...)
+      {
+        // Whoever reads the node next computes it: nobody waits for a node that will not come.
+        state.store(LatticeCache::Empty, std::memory_order_release);
+        throw;
+      }
+      state.store(ready, std::memory_order_release);
+      return ready;
+    }
+    if (seen == LatticeCache::Busy)
+    {
+      // Another thread is computing it (microseconds: one neighbourhood's exact Hessian).
+      std::this_thread::yield();
+    }
+  }
+}
+
+std::uint8_t DeltaLattice::computeNode(
   LatticeCache::Brick& brick, const LatticeCache::BrickKey& key, int local, Workspace& ws) const
 {
   constexpr int side = LatticeCache::BrickSide;
@@ -114,7 +239,7 @@ void DeltaLattice::computeNode(
   const int l[3] = { local / (side * side), local / side % side, local % side };
   double* data = brick.data.data() + local * nodeData;
   // A node on a face, edge or corner of the brick belongs to the neighbours across it too.
-  const LatticeCache& cache = ws.lattice;
+  LatticeCache& cache = ws.lattice;
   for (int across = 1; across < 8; ++across)
   {
     LatticeCache::BrickKey other = key;
@@ -136,13 +261,17 @@ void DeltaLattice::computeNode(
     {
       continue;
     }
-    const auto found = cache.bricks.find(other);
-    if (found != cache.bricks.end() && cache.storage[found->second].state[otherLocal] != 0)
+    const auto seen = cache.seen.find(other);
+    const std::shared_ptr<LatticeCache::Brick> from = seen != cache.seen.end() ? seen->second : cache.table->find(other);
+    if (!from)
     {
-      const LatticeCache::Brick& from = cache.storage[found->second];
-      std::copy_n(from.data.data() + otherLocal * nodeData, nodeData, data);
-      brick.state[local] = from.state[otherLocal];
-      return;
+      continue;
+    }
+    const std::uint8_t state = from->state[otherLocal].load(std::memory_order_acquire);
+    if (state == LatticeCache::Ready || state == LatticeCache::ReadyFromBeyond)
+    {
+      std::copy_n(from->data.data() + otherLocal * nodeData, nodeData, data);
+      return state;
     }
   }
   // The node's own reach decides its flag, whatever the caller's evaluation had noted so far.
@@ -159,7 +288,7 @@ void DeltaLattice::computeNode(
   focusNeighbourhoods(Field.index(), Field.parameters(), Planar ? Vec3(blockCentre.x(), blockCentre.y(), 0.0) : blockCentre,
     (Planar ? std::sqrt(0.5) : std::sqrt(0.75)) * blockSpan, ws);
   const DeltaHessian d = Field.hessian(Vec3(i * Spacing, j * Spacing, k * Spacing), ws);
-  brick.state[local] = ws.leftCompleteRegion ? 2 : 1;
+  const std::uint8_t state = ws.leftCompleteRegion ? LatticeCache::ReadyFromBeyond : LatticeCache::Ready;
   ws.leftCompleteRegion = before;
   const double s2 = Spacing * Spacing;
   data[0] = d.value;
@@ -170,6 +299,7 @@ void DeltaLattice::computeNode(
   data[5] = d.hessian(0, 2) * s2;
   data[6] = d.hessian(0, 1) * s2;
   data[7] = 0.0;
+  return state;
 }
 
 template <bool WithDerivatives>
@@ -186,13 +316,10 @@ bool DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
   LatticeCache& cache = ws.lattice;
   const SurfaceParameters& params = Field.parameters();
   const std::uint64_t serial = Field.index().serial();
-  if (cache.indexSerial != serial || cache.h != params.h || cache.cutoff != params.cutoff || cache.spacing != Spacing)
+  if (!cache.table || !cache.table->serves(serial, params.h, params.cutoff, Spacing))
   {
     cache.clear();
-    cache.indexSerial = serial;
-    cache.h = params.h;
-    cache.cutoff = params.cutoff;
-    cache.spacing = Spacing;
+    cache.table = LatticeTable::of(serial, params.h, params.cutoff, Spacing);
   }
   const std::int64_t ci = static_cast<std::int64_t>(std::floor(u.x()));
   const std::int64_t cj = static_cast<std::int64_t>(std::floor(u.y()));
@@ -212,13 +339,14 @@ bool DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
     for (int corner = 0; corner < 4; ++corner)
     {
       const int local = origin + ((corner >> 1) * side + (corner & 1)) * side + cz;
-      if (brick.state[local] != 1)
+      std::uint8_t state = brick.state[local].load(std::memory_order_acquire);
+      if (state != LatticeCache::Ready)
       {
-        if (brick.state[local] == 0)
+        if (state != LatticeCache::ReadyFromBeyond)
         {
-          computeNode(brick, key, local, ws);
+          state = readyNode(brick, key, local, ws);
         }
-        ws.leftCompleteRegion = ws.leftCompleteRegion || brick.state[local] == 2;
+        ws.leftCompleteRegion = ws.leftCompleteRegion || state == LatticeCache::ReadyFromBeyond;
       }
     }
   }

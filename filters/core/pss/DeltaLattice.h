@@ -14,12 +14,15 @@
  * cell faces, so e_I's slope and tilt stay continuous and Newton's steps well defined.
  *
  * Determinism: a node's data are a function of its integer coordinates only (the exact delta there,
- * whose neighbourhood is canonical), so what a workspace holds changes the time, never a bit of a
- * result, whatever the threads or the order of the work. Nodes are computed when a cell first needs
- * them and kept in bricks of 9 x 9 x 9 nodes in the workspace (LatticeCache), which is cleared
- * when it passes its capacity. A node computed from cloud points beyond the index's complete region
- * keeps that flag, and every read of it sets Workspace::leftCompleteRegion, as the exact
- * evaluation would.
+ * whose neighbourhood is canonical), so which thread computed a node, and when, changes the time,
+ * never a bit of a result. Nodes are computed when a cell first needs them and kept in bricks of
+ * 9 x 9 x 9 nodes in a table shared by every workspace that reads the same lattice (same index, h,
+ * cutoff and spacing; LatticeTable), so threads projecting nearby points compute each node once. The
+ * table holds at most LatticeCache::MaxBricks bricks; past that it lets go of the oldest quarter,
+ * which live on while a workspace still reads them (a brick is shared by the table and the
+ * workspaces that looked it up, and freed with the last of them). A node computed from cloud
+ * points beyond the index's complete region keeps that flag, and every read of it sets
+ * Workspace::leftCompleteRegion, as the exact evaluation would.
  *
  * In 2D (a cloud in the xy-plane) the lattice is the plane's: nodes at z = 0, bicubic Hermite.
  * Beyond 2^50 cells from the origin (coordinates of 1e15 h and more) delta is evaluated exactly.
@@ -30,7 +33,9 @@
 #include "pss/Types.h"
 
 #include <array>
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -40,8 +45,11 @@ namespace pss
 class PointIndex;
 struct Workspace;
 
-/// The nodes a workspace has computed, for one index, h, cutoff and spacing. Its members are
-/// DeltaLattice's business.
+class LatticeTable;
+
+/// A workspace's view of the lattice nodes computed so far, for one index, h, cutoff and spacing.
+/// The nodes themselves are shared by every thread reading that lattice (LatticeTable); its
+/// members are DeltaLattice's business.
 struct LatticeCache
 {
   /// A brick covers 8 x 8 x 8 cells and holds their 9 x 9 x 9 corner nodes: every cell finds its
@@ -53,8 +61,10 @@ struct LatticeCache
   /// Per node, in two groups of four that the interpolation contracts as vectors (with s the
   /// spacing): delta, s d/dz, s d/dy, s^2 d2/dydz; s d/dx, s^2 d2/dxdz, s^2 d2/dxdy, 0.
   static constexpr int NodeData = 8;
-  /// About 57 MB of bricks (47 KB each) per workspace before it starts again empty.
-  static constexpr std::size_t MaxBricks = 1224;
+  /// About 96 MB of bricks (47 KB each) in a shared table; past that it forgets its oldest quarter.
+  static constexpr std::size_t MaxBricks = 2048;
+  /// The bricks a workspace keeps looked up before it forgets them (and asks the table again).
+  static constexpr std::size_t MaxSeen = 1024;
 
   struct BrickKey
   {
@@ -65,23 +75,29 @@ struct LatticeCache
   {
     std::size_t operator()(const BrickKey& key) const;
   };
+  /// Node states.
+  enum : std::uint8_t
+  {
+    Empty = 0,
+    Ready = 1,
+    ReadyFromBeyond = 2, ///< computed from cloud points beyond the index's complete region
+    Busy = 3             ///< being computed by some thread
+  };
   struct Brick
   {
+    Brick();
     std::array<double, BrickNodes * NodeData> data;
-    /// 0: not computed yet; 1: computed; 2: computed from points beyond the complete region.
-    std::array<std::uint8_t, BrickNodes> state;
+    /// A node's data may be read once its state is Ready or ReadyFromBeyond (acquire).
+    std::array<std::atomic<std::uint8_t>, BrickNodes> state;
   };
 
-  std::uint64_t indexSerial = 0; ///< 0: empty
-  double h = 0.0;
-  double cutoff = 0.0;
-  double spacing = 0.0;
-  std::unordered_map<BrickKey, std::uint32_t, BrickHash> bricks;
-  std::vector<Brick> storage;
+  /// The table of this lattice, and the bricks this workspace has looked up there (which it keeps
+  /// alive, whatever the table forgets meanwhile).
+  std::shared_ptr<LatticeTable> table;
+  std::unordered_map<BrickKey, std::shared_ptr<Brick>, BrickHash> seen;
   /// The brick of the last lookup, which most lookups of a cell's corners hit again.
   BrickKey lastKey;
-  std::uint32_t lastBrick = 0;
-  bool hasLast = false;
+  Brick* lastBrick = nullptr;
 
   void clear();
 };
@@ -109,11 +125,14 @@ private:
   /// computed, where the cell indices would overflow (coordinates beyond 2^50 cells, NaN).
   template <bool WithDerivatives>
   bool interpolate(const Vec3& y, Workspace& ws, double& value, Vec3* gradient, Mat3* hessian) const;
-  /// The brick of @p key, added (empty) when the cache lacks it.
+  /// The brick of @p key, added (empty) when the table lacks it.
   LatticeCache::Brick& brickAt(const LatticeCache::BrickKey& key, Workspace& ws) const;
-  /// Makes node @p local of @p brick (whose key is @p key) ready: copied from a neighbouring
-  /// brick that shares it, else computed.
-  void computeNode(LatticeCache::Brick& brick, const LatticeCache::BrickKey& key, int local, Workspace& ws) const;
+  /// Node @p local of @p brick (whose key is @p key) once it is ready, computed by this thread
+  /// or waited for while another computes it; returns its state (Ready or ReadyFromBeyond).
+  std::uint8_t readyNode(LatticeCache::Brick& brick, const LatticeCache::BrickKey& key, int local, Workspace& ws) const;
+  /// Writes node @p local's data: copied from a neighbouring brick that shares it, else
+  /// computed; returns the state it is to take.
+  std::uint8_t computeNode(LatticeCache::Brick& brick, const LatticeCache::BrickKey& key, int local, Workspace& ws) const;
 
   const DistanceField& Field;
   double Spacing; ///< in the cloud's units

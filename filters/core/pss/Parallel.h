@@ -32,7 +32,7 @@ void parallelFor(std::size_t n, int threads, const std::function<void(std::size_
  * The chunks of [0, n) that @p workers workers take in turn. Each worker owns a contiguous part
  * and takes chunks from its front; a worker whose part is done takes chunks from the back of the
  * part with the most left. The batch entry points visit points in spatial order, so contiguous
- * parts keep each worker's points, and what its workspace caches (the delta lattice's nodes),
+ * parts keep each worker's points, and what its workspace caches (candidate points, neighbourhoods),
  * together, while the stealing still balances uneven per-point cost (projections far from the
  * cloud take many more iterations than those near it). Which worker runs a chunk never changes
  * what it computes.

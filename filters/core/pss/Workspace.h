@@ -106,7 +106,7 @@ struct Workspace
   Eigen::ArrayXd focusSq;
   Eigen::ArrayXd scaledSq; ///< candidates' |p - y|^2 / h_i^2 (a scale per point)
   PointIndex::LeafRanges leaves;
-  /// The delta lattice's nodes computed so far (SurfaceParameters::deltaLattice > 0).
+  /// The delta lattice's shared node table and the bricks this workspace has looked up there.
   LatticeCache lattice;
   /// Set by a caller whose start set the lattice does not serve (latticeServes): delta is then
   /// evaluated exactly, as with SurfaceParameters::deltaLattice 0.
