@@ -76,6 +76,14 @@ PSS_KERNEL_INLINE double lanesSum(const VecD& v)
   return s;
 }
 
+// Each vector's lanes summed into out[0], out[1], ... in order: a kernel's totals.
+template <class... Vectors>
+PSS_KERNEL_INLINE void storeLaneSums(double* out, const Vectors&... v)
+{
+  int j = 0;
+  ((out[j++] = lanesSum(v)), ...);
+}
+
 // exp(x) for x <= 0, SimdLanes at a time: x = k ln2 + r with |r| <= ln2 / 2 (ln2 in two parts,
 // so k ln2 is exact to double precision), exp(r) by its Taylor series to degree 13 (remainder
 // below 1e-17), and 2^k added to the exponent bits. Within one ulp of std::exp on [-708, 0];
@@ -341,10 +349,7 @@ PSS_KERNEL_INLINE void weightsBody(const double* sqDist, const double* dx, const
     sy += w * load(dy + i);
     sz += w * load(dz + i);
   }
-  sums[0] = lanesSum(sw);
-  sums[1] = lanesSum(sx);
-  sums[2] = lanesSum(sy);
-  sums[3] = lanesSum(sz);
+  storeLaneSums(sums, sw, sx, sy, sz);
 }
 
 // The same with a scale per point: @p weight holds the exponents on entry (compactScaled's
@@ -364,11 +369,7 @@ PSS_KERNEL_INLINE void scaledWeightsBody(const double* dx, const double* dy, con
     sz += w * load(dz + i);
     sh += w * load(pointScale + i);
   }
-  sums[0] = lanesSum(sw);
-  sums[1] = lanesSum(sx);
-  sums[2] = lanesSum(sy);
-  sums[3] = lanesSum(sz);
-  sums[4] = lanesSum(sh);
+  storeLaneSums(sums, sw, sx, sy, sz, sh);
 }
 
 PSS_KERNEL_INLINE void expBody(const double* x, double* out, Eigen::Index n)
@@ -409,12 +410,7 @@ PSS_KERNEL_INLINE void scatterBody(const double* weight, const double* dx, const
     yz += wy * cz;
     zz += w * cz * cz;
   }
-  s[0] = lanesSum(xx);
-  s[1] = lanesSum(xy);
-  s[2] = lanesSum(xz);
-  s[3] = lanesSum(yy);
-  s[4] = lanesSum(yz);
-  s[5] = lanesSum(zz);
+  storeLaneSums(s, xx, xy, xz, yy, yz, zz);
 }
 
 // sum_i w_i s_i^k (k = 1..4) with s_i = a . (dx_i, dy_i, dz_i).
@@ -435,10 +431,7 @@ PSS_KERNEL_INLINE void momentsBody(const double* weight, const double* dx, const
     m3 += ws2 * s;
     m4 += ws2 * (s * s);
   }
-  out[0] = lanesSum(m1);
-  out[1] = lanesSum(m2);
-  out[2] = lanesSum(m3);
-  out[3] = lanesSum(m4);
+  storeLaneSums(out, m1, m2, m3, m4);
 }
 
 // The sums of the algebraic sphere's fit: out[] = {sum w n_x, sum w n_y, sum w n_z, sum w r . n,
@@ -462,11 +455,7 @@ PSS_KERNEL_INLINE void orientedMomentsBody(const double* weight, const double* d
     rn += wx * x + wy * y + wz * z;
     rr += w * (x * x + y * y + z * z);
   }
-  out[0] = lanesSum(sx);
-  out[1] = lanesSum(sy);
-  out[2] = lanesSum(sz);
-  out[3] = lanesSum(rn);
-  out[4] = lanesSum(rr);
+  storeLaneSums(out, sx, sy, sz, rn, rr);
 }
 
 // RIMLS's robust factors (its refits): robust[i] = exp(min(0, -(f_i - f)^2 rf - |n_i - g|^2 nf)) with
@@ -526,11 +515,7 @@ PSS_KERNEL_INLINE void robustSumsBody(const double* weight, const double* robust
     sy += w * nyi;
     sz += w * nzi;
   }
-  const VecD all[11] = { sw, sf, gx, gy, gz, fx, fy, fz, sx, sy, sz };
-  for (int j = 0; j < 11; ++j)
-  {
-    out[j] = lanesSum(all[j]);
-  }
+  storeLaneSums(out, sw, sf, gx, gy, gz, fx, fy, fz, sx, sy, sz);
 }
 
 #define PSS_KERNEL_COPIES(SUFFIX, TARGET)                                                                        \
