@@ -202,7 +202,7 @@ std::uint8_t DeltaLattice::readyNode(
   for (;;)
   {
     std::uint8_t seen = state.load(std::memory_order_acquire);
-    if (seen == LatticeCache::Ready || seen == LatticeCache::ReadyFromBeyond)
+    if (LatticeCache::isReady(seen))
     {
       return seen;
     }
@@ -268,7 +268,7 @@ std::uint8_t DeltaLattice::computeNode(
       continue;
     }
     const std::uint8_t state = from->state[otherLocal].load(std::memory_order_acquire);
-    if (state == LatticeCache::Ready || state == LatticeCache::ReadyFromBeyond)
+    if (LatticeCache::isReady(state))
     {
       std::copy_n(from->data.data() + otherLocal * nodeData, nodeData, data);
       return state;
@@ -340,14 +340,11 @@ bool DeltaLattice::interpolate(const Vec3& y, Workspace& ws, double& value, Vec3
     {
       const int local = origin + ((corner >> 1) * side + (corner & 1)) * side + cz;
       std::uint8_t state = brick.state[local].load(std::memory_order_acquire);
-      if (state != LatticeCache::Ready)
+      if (!LatticeCache::isReady(state))
       {
-        if (state != LatticeCache::ReadyFromBeyond)
-        {
-          state = readyNode(brick, key, local, ws);
-        }
-        ws.leftCompleteRegion = ws.leftCompleteRegion || state == LatticeCache::ReadyFromBeyond;
+        state = readyNode(brick, key, local, ws);
       }
+      ws.leftCompleteRegion = ws.leftCompleteRegion || state == LatticeCache::ReadyFromBeyond;
     }
   }
   // The tensor-product sum contracted one axis at a time. A node's data each take the value (V)

@@ -83,11 +83,13 @@ struct LatticeCache
     ReadyFromBeyond = 2, ///< computed from cloud points beyond the index's complete region
     Busy = 3             ///< being computed by some thread
   };
+  /// Whether a node in @p state may be read.
+  static bool isReady(std::uint8_t state) { return state == Ready || state == ReadyFromBeyond; }
   struct Brick
   {
     Brick();
     std::array<double, BrickNodes * NodeData> data;
-    /// A node's data may be read once its state is Ready or ReadyFromBeyond (acquire).
+    /// A node's data may be read once its state isReady (acquire).
     std::array<std::atomic<std::uint8_t>, BrickNodes> state;
   };
 
