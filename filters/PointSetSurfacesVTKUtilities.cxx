@@ -24,7 +24,7 @@ std::vector<pss::Vec3> ToVectors(vtkPoints* points, int threads)
     return out;
   }
   const vtkIdType n = points->GetNumberOfPoints();
-  out.resize(static_cast<std::size_t>(n));
+  pss::resizeOnHugePages(out, static_cast<std::size_t>(n));
   // Double coordinates (what the readers and sources here produce) are read from the array's
   // memory directly: a virtual GetPoint per point costs more than the copy itself.
   vtkDoubleArray* doubles = vtkDoubleArray::FastDownCast(points->GetData());

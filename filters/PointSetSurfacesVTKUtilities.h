@@ -17,6 +17,7 @@
 #include "PointSetSurfacesVertexCells.h"
 
 #include "pss/ExtremalSurface.h"
+#include "pss/Memory.h"
 #include "pss/Types.h"
 
 #include <vector>
@@ -39,6 +40,9 @@ vtkSmartPointer<ArrayT> NewArray(const char* name, vtkIdType tuples, int compone
   array->SetName(name);
   array->SetNumberOfComponents(components);
   array->SetNumberOfTuples(tuples);
+  // Filled in the input's order while the points are visited in spatial order (pss/Memory.h).
+  pss::adviseHugePages(array->GetVoidPointer(0),
+    static_cast<std::size_t>(tuples) * static_cast<std::size_t>(components) * sizeof(typename ArrayT::ValueType));
   return array;
 }
 

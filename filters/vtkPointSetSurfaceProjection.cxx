@@ -197,7 +197,9 @@ int vtkPointSetSurfaceProjection::RequestData(
   }
   std::vector<std::uint32_t> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0u);
-  const bool ordered = this->OrderStartPoints(starts, cloud, startPoints, run.GetController() != nullptr, order);
+  bool indexOrder = false;
+  const bool ordered =
+    this->OrderStartPoints(starts, cloud, startPoints, run.GetController() != nullptr, order, indexOrder);
   if (!ordered && !run.HasGhosts())
   {
     return 0;
@@ -224,17 +226,36 @@ int vtkPointSetSurfaceProjection::RequestData(
     }
     const pss::PointIndex& index = *this->Surface->GetIndex();
     const pss::Orientation orientation = pss_vtk::OrientationFor(this->OrientationViewpoint(), run.GetCentroid());
-    const bool completed =
-      pss::forEachInOrder(ks, pss_vtk::SMPLoop(this), [&](std::size_t k, pss::Workspace& ws) {
-        const vtkIdType i = static_cast<vtkIdType>(k);
-        double start[3];
+    // The indexed cloud's own starts are read from the index, which stores them in the visiting
+    // order, one after the other, rather than from the input array, where that order jumps all
+    // over memory (3D only: in 2D the index holds them restricted to the plane).
+    const std::vector<pss::Vec3>* inVisitingOrder =
+      indexOrder && index.dimension() == 3 && ks.size() == static_cast<std::size_t>(n) ? &index.points() : nullptr;
+    const auto work = [&](std::size_t position, pss::Workspace& ws) {
+      const vtkIdType i = static_cast<vtkIdType>(ks[position]);
+      double start[3];
+      if (inVisitingOrder && position < inVisitingOrder->size())
+      {
+        const pss::Vec3& p = (*inVisitingOrder)[position];
+        std::copy(p.data(), p.data() + 3, start);
+      }
+      else
+      {
         startPoints->GetPoint(i, start);
-        ws.leftCompleteRegion = false;
-        ws.exactDelta = exactDelta;
-        arrays.Set(i, this->ProjectPoint(i, start, *surface, options, ws), start, index, orientation);
-        if (run.HasGhosts())
+      }
+      ws.leftCompleteRegion = false;
+      ws.exactDelta = exactDelta;
+      arrays.Set(i, this->ProjectPoint(i, start, *surface, options, ws), start, index, orientation);
+      if (run.HasGhosts())
+      {
+        escaped[static_cast<std::size_t>(i)] = ws.leftCompleteRegion ? 1 : 0;
+      }
+    };
+    const bool completed = pss_vtk::SMPLoop(this)(ks.size(), pss::LoopShare(0.0, 1.0),
+      [&](std::size_t begin, std::size_t end, pss::Workspace& ws) {
+        for (std::size_t position = begin; position < end; ++position)
         {
-          escaped[k] = ws.leftCompleteRegion ? 1 : 0;
+          work(position, ws);
         }
       });
     aborted = !completed;
@@ -288,8 +309,9 @@ int vtkPointSetSurfaceProjection::RequestData(
 }
 
 bool vtkPointSetSurfaceProjection::OrderStartPoints(vtkPointSet* starts, vtkPointSet* cloud, vtkPoints* startPoints,
-  bool distributed, std::vector<std::uint32_t>& order)
+  bool distributed, std::vector<std::uint32_t>& order, bool& indexOrder)
 {
+  indexOrder = false;
   try
   {
     // Neighbours are visited together so that they share cached neighbourhoods. The indexed
@@ -302,6 +324,7 @@ bool vtkPointSetSurfaceProjection::OrderStartPoints(vtkPointSet* starts, vtkPoin
     const int threads = pss_vtk::CoreThreads();
     order = startsAreIndexed ? index->visitingOrder()
                              : pss::spatialOrder(pss_vtk::ToVectors(startPoints, threads), threads);
+    indexOrder = startsAreIndexed;
     return true;
   }
   catch (const std::exception& e)

@@ -200,11 +200,12 @@ protected:
   int GhostRounds = 0;
 
 private:
-  // The order to project @p startPoints in (neighbours together); false after an error.
   /// PropagateNormals: orients @p normals (three per end point) over @p endPoints' graph.
   bool OrientOutputNormals(vtkPoints* endPoints, double* normals);
+  /// The order to project @p startPoints in (neighbours together); @p indexOrder tells whether it
+  /// is the index's own (the starts are the indexed cloud). False after an error.
   bool OrderStartPoints(vtkPointSet* starts, vtkPointSet* cloud, vtkPoints* startPoints, bool distributed,
-    std::vector<std::uint32_t>& order);
+    std::vector<std::uint32_t>& order, bool& indexOrder);
 
   vtkPointSetSurfaceProjection(const vtkPointSetSurfaceProjection&) = delete;
   void operator=(const vtkPointSetSurfaceProjection&) = delete;

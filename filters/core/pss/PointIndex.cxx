@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "pss/PointIndex.h"
 
+#include "pss/Memory.h"
 #include "pss/NanoflannInternals.h" // nanoflann, and the internals PointIndex reads
 #include "pss/Parallel.h"
 
@@ -212,13 +213,12 @@ int detectDimension(const Vec3& lo, const Vec3& hi)
 namespace
 {
 
-// out[i] = in[order[i]] for every i, through @p scratch (left holding the old values): large
-// clouds are permuted twice while the index is built, and reusing one buffer saves the time the
-// system takes to hand out fresh memory. Each i is written once, so threads cannot change it.
+// out[i] = in[order[i]] through @p scratch (then holding the old values; large clouds are permuted
+// twice). Its reads jump, so both buffers are on huge pages (pss/Memory.h); one write per i.
 template <class T, class Index>
 void permute(std::vector<T>& values, const std::vector<Index>& order, std::vector<T>& scratch, int threads)
 {
-  scratch.resize(values.size());
+  resizeOnHugePages(scratch, values.size());
   forEachRange(order.size(), threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
@@ -273,7 +273,7 @@ PointIndex::PointIndex(std::vector<Vec3> points, int dimension, int threads)
   std::partial_sum(offset.begin(), offset.end(), offset.begin());
   const std::size_t finite = offset.back();
   Skipped = Points.size() - finite;
-  OriginalIds.resize(finite);
+  resizeOnHugePages(OriginalIds, finite);
   if (Skipped == 0)
   {
     fillIota(OriginalIds, threads);

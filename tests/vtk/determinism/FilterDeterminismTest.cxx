@@ -302,9 +302,10 @@ TEST(FilterDeterminism, Projection)
   }
 }
 
-// The cloud's own points are visited in the index's leaf order, other start points in Morton
-// order (vtkPointSetSurfaceProjection::RequestData): the order must not change a single bit. A
-// NaN point exercises the skipped points, which come last in the first order.
+// The cloud's own points are visited in the index's leaf order, their coordinates read from the
+// index, other start points in Morton order from their array (vtkPointSetSurfaceProjection::
+// RequestData): neither the order nor where a start is read must change a single bit. A NaN point
+// exercises the skipped points, which come last in the first order and are read from the array.
 TEST(FilterDeterminism, ProjectionIndependentOfVisitingOrder)
 {
   vtkSmartPointer<vtkPolyData> cloud = NoisySphere();
