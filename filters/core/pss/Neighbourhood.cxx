@@ -207,7 +207,7 @@ void gatherNeighbourhood(
   CandidateCache& cache = focused ? ws.focused : ws.wide;
   if (!focused && !cache.covers(index, params, nb.origin))
   {
-    cache.fetch(index, params, nb.origin, ws.leaves);
+    cache.fetch(index, params, nb.origin, ws.leaves, index.hasScales() ? 0.0 : ws.fetchSlack * params.h);
   }
   nb.withNormals = cache.withNormals;
   if (nb.scaled)

@@ -111,6 +111,11 @@ struct Workspace
   /// Set by a caller whose start set the lattice does not serve (latticeServes): delta is then
   /// evaluated exactly, as with SurfaceParameters::deltaLattice 0.
   bool exactDelta = false;
+  /// Slack, in units of h, that a gather's candidate fetch adds around its query at least (one h
+  /// scale only; a fetch adds 0.5 h anyway). A wider fetch serves more of the following queries
+  /// but costs every one of them a longer scan: the plane procedure, one gather per step, gains
+  /// from 1 h; the extremal one, many gathers per step along a line, loses. Never changes a result.
+  double fetchSlack = 0.0;
 
   /// Not a cache but a report: set (never cleared by the core) when an evaluation needed cloud
   /// points beyond the index's complete region (PointIndex::setCompleteRegion), so that its result
