@@ -16,7 +16,7 @@ namespace pss
 namespace
 {
 // The plane procedure's Workspace::fetchSlack: on the bunny (h = 1 mm) 1 h ran the com plane rows
-// 6-16% faster than 0.5 h, 0.35 h and 1.5-2 h slower; the extremal rows ran 6% slower at 1 h.
+// 3-16% faster than 0.5 h, 0.35 h and 1.5-2 h slower; the extremal rows ran 6% slower at 1 h.
 constexpr double PlaneFetchSlack = 1.0;
 } // namespace
 
