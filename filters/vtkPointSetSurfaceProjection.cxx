@@ -231,31 +231,25 @@ int vtkPointSetSurfaceProjection::RequestData(
     // over memory (3D only: in 2D the index holds them restricted to the plane).
     const std::vector<pss::Vec3>* inVisitingOrder =
       indexOrder && index.dimension() == 3 && ks.size() == static_cast<std::size_t>(n) ? &index.points() : nullptr;
-    const auto work = [&](std::size_t position, pss::Workspace& ws) {
-      const vtkIdType i = static_cast<vtkIdType>(ks[position]);
-      double start[3];
-      if (inVisitingOrder && position < inVisitingOrder->size())
-      {
-        const pss::Vec3& p = (*inVisitingOrder)[position];
-        std::copy(p.data(), p.data() + 3, start);
-      }
-      else
-      {
-        startPoints->GetPoint(i, start);
-      }
-      ws.leftCompleteRegion = false;
-      ws.exactDelta = exactDelta;
-      arrays.Set(i, this->ProjectPoint(i, start, *surface, options, ws), start, index, orientation);
-      if (run.HasGhosts())
-      {
-        escaped[static_cast<std::size_t>(i)] = ws.leftCompleteRegion ? 1 : 0;
-      }
-    };
-    const bool completed = pss_vtk::SMPLoop(this)(ks.size(), pss::LoopShare(0.0, 1.0),
-      [&](std::size_t begin, std::size_t end, pss::Workspace& ws) {
-        for (std::size_t position = begin; position < end; ++position)
+    const bool completed =
+      pss::forEachPosition(ks.size(), pss_vtk::SMPLoop(this), [&](std::size_t position, pss::Workspace& ws) {
+        const vtkIdType i = static_cast<vtkIdType>(ks[position]);
+        double start[3];
+        if (inVisitingOrder && position < inVisitingOrder->size())
         {
-          work(position, ws);
+          const pss::Vec3& p = (*inVisitingOrder)[position];
+          std::copy(p.data(), p.data() + 3, start);
+        }
+        else
+        {
+          startPoints->GetPoint(i, start);
+        }
+        ws.leftCompleteRegion = false;
+        ws.exactDelta = exactDelta;
+        arrays.Set(i, this->ProjectPoint(i, start, *surface, options, ws), start, index, orientation);
+        if (run.HasGhosts())
+        {
+          escaped[static_cast<std::size_t>(i)] = ws.leftCompleteRegion ? 1 : 0;
         }
       });
     aborted = !completed;

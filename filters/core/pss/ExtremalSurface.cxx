@@ -314,7 +314,10 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
     double saved;
     ~Slack() { ws.fetchSlack = saved; }
   } slack{ ws, ws.fetchSlack };
-  ws.fetchSlack = plane ? PlaneFetchSlack : slack.saved;
+  if (plane)
+  {
+    ws.fetchSlack = PlaneFetchSlack;
+  }
   // The plane procedure needs n(x) and c(x) - x at every iterate; planeFit gets both from one
   // neighbourhood. Each iterate's fit starts from what the previous one left in memory.
   Vec3 centroid = Vec3::Zero();
@@ -433,10 +436,15 @@ bool forEachStart(const std::vector<Vec3>& starts, const ParallelLoop& loop,
 bool forEachInOrder(const std::vector<std::uint32_t>& order, const ParallelLoop& loop,
   const std::function<void(std::size_t, Workspace&)>& work)
 {
-  return loop(order.size(), LoopShare(0.0, 1.0), [&](std::size_t begin, std::size_t end, Workspace& ws) {
+  return forEachPosition(order.size(), loop, [&](std::size_t k, Workspace& ws) { work(order[k], ws); });
+}
+
+bool forEachPosition(std::size_t count, const ParallelLoop& loop, const std::function<void(std::size_t, Workspace&)>& work)
+{
+  return loop(count, LoopShare(0.0, 1.0), [&](std::size_t begin, std::size_t end, Workspace& ws) {
     for (std::size_t k = begin; k < end; ++k)
     {
-      work(order[k], ws);
+      work(k, ws);
     }
   });
 }

@@ -147,6 +147,10 @@ bool forEachStart(const std::vector<Vec3>& starts, const ParallelLoop& loop,
 bool forEachInOrder(const std::vector<std::uint32_t>& order, const ParallelLoop& loop,
   const std::function<void(std::size_t, Workspace&)>& work);
 
+/// forEachInOrder by position: work(k, ws) for every k in [0, count), so that the caller can read
+/// what it keeps in visiting order (forEachInOrder calls work(order[k], ws)).
+bool forEachPosition(std::size_t count, const ParallelLoop& loop, const std::function<void(std::size_t, Workspace&)>& work);
+
 /// projectEach, keeping every result (result i for start i).
 std::vector<ProjectionResult> projectAll(const SurfaceDefinition& s, const std::vector<Vec3>& starts,
   const ProjectionOptions& opt, int threads = 0);
