@@ -22,6 +22,7 @@ if(PSS_CORE_X86_64_V3)
 endif()
 file(GLOB pss_core_headers "${PROJECT_SOURCE_DIR}/filters/core/pss/*.h")
 list(FILTER pss_core_headers EXCLUDE REGEX "/NanoflannInternals\\.h$")  # private to PointIndex.cxx
+list(FILTER pss_core_headers EXCLUDE REGEX "/ChunkedLoops\\.h$")  # private to PointIndex.cxx and SpatialOrder.cxx
 list(FILTER pss_core_headers EXCLUDE REGEX "/KernelDispatch\\.h$")  # private to the kernels' files
 install(FILES ${pss_core_headers} DESTINATION "${PSS_INSTALL_INCLUDEDIR}/pss" COMPONENT development)
 install(EXPORT PointSetSurfacesCore NAMESPACE PointSetSurfaces:: FILE PointSetSurfacesCoreTargets.cmake

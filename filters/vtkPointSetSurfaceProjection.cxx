@@ -197,9 +197,9 @@ int vtkPointSetSurfaceProjection::RequestData(
   }
   std::vector<std::uint32_t> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0u);
-  bool indexOrder = false;
+  std::vector<std::uint32_t> positions; // in the index, of the starts in order: when they are its cloud
   const bool ordered =
-    this->OrderStartPoints(starts, cloud, startPoints, run.GetController() != nullptr, order, indexOrder);
+    this->OrderStartPoints(starts, cloud, startPoints, run.GetController() != nullptr, order, positions);
   if (!ordered && !run.HasGhosts())
   {
     return 0;
@@ -226,18 +226,17 @@ int vtkPointSetSurfaceProjection::RequestData(
     }
     const pss::PointIndex& index = *this->Surface->GetIndex();
     const pss::Orientation orientation = pss_vtk::OrientationFor(this->OrientationViewpoint(), run.GetCentroid());
-    // The indexed cloud's own starts are read from the index, which stores them in the visiting
-    // order, one after the other, rather than from the input array, where that order jumps all
-    // over memory (3D only: in 2D the index holds them restricted to the plane).
-    const std::vector<pss::Vec3>* inVisitingOrder =
-      indexOrder && index.dimension() == 3 && ks.size() == static_cast<std::size_t>(n) ? &index.points() : nullptr;
+    // The indexed cloud's own starts are read from the index, near the neighbours just fetched
+    // for the previous start, rather than from the input array, where the visiting order jumps
+    // all over memory (3D only: in 2D the index holds them restricted to the plane).
+    const bool fromIndex = !positions.empty() && index.dimension() == 3 && ks.size() == static_cast<std::size_t>(n);
     const bool completed =
       pss::forEachPosition(ks.size(), pss_vtk::SMPLoop(this), [&](std::size_t position, pss::Workspace& ws) {
         const vtkIdType i = static_cast<vtkIdType>(ks[position]);
         double start[3];
-        if (inVisitingOrder && position < inVisitingOrder->size())
+        if (fromIndex && position < positions.size())
         {
-          const pss::Vec3& p = (*inVisitingOrder)[position];
+          const pss::Vec3& p = index.point(positions[position]);
           std::copy(p.data(), p.data() + 3, start);
         }
         else
@@ -303,22 +302,29 @@ int vtkPointSetSurfaceProjection::RequestData(
 }
 
 bool vtkPointSetSurfaceProjection::OrderStartPoints(vtkPointSet* starts, vtkPointSet* cloud, vtkPoints* startPoints,
-  bool distributed, std::vector<std::uint32_t>& order, bool& indexOrder)
+  bool distributed, std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& positions)
 {
-  indexOrder = false;
+  positions.clear();
   try
   {
     // Neighbours are visited together so that they share cached neighbourhoods. The indexed
-    // cloud's own points come in that order from the index at no cost (not in a distributed run:
-    // the index holds the gathered cloud or a piece with ghosts); other start points are sorted.
+    // cloud's own points are sorted as the index holds them (not in a distributed run: the index
+    // holds the gathered cloud or a piece with ghosts); other start points are copied and sorted.
     const pss::PointIndex* index = this->Surface->GetIndex();
     const vtkIdType n = startPoints ? startPoints->GetNumberOfPoints() : 0;
     const bool startsAreIndexed = starts == cloud && !distributed && index &&
       static_cast<vtkIdType>(index->size() + index->skippedCount()) == n;
     const int threads = pss_vtk::CoreThreads();
-    order = startsAreIndexed ? index->visitingOrder()
-                             : pss::spatialOrder(pss_vtk::ToVectors(startPoints, threads), threads);
-    indexOrder = startsAreIndexed;
+    if (startsAreIndexed)
+    {
+      pss::PointIndex::VisitingOrder visiting = index->visitingOrder(threads);
+      order = std::move(visiting.ids);
+      positions = std::move(visiting.positions);
+    }
+    else
+    {
+      order = pss::spatialOrder(pss_vtk::ToVectors(startPoints, threads), threads);
+    }
     return true;
   }
   catch (const std::exception& e)

@@ -202,10 +202,11 @@ protected:
 private:
   /// PropagateNormals: orients @p normals (three per end point) over @p endPoints' graph.
   bool OrientOutputNormals(vtkPoints* endPoints, double* normals);
-  /// The order to project @p startPoints in (neighbours together); @p indexOrder tells whether it
-  /// is the index's own (the starts are the indexed cloud). False after an error.
+  /// The order to project @p startPoints in (neighbours together); when the starts are the indexed
+  /// cloud, @p positions receives where each of them is in the index (else it is left empty).
+  /// False after an error.
   bool OrderStartPoints(vtkPointSet* starts, vtkPointSet* cloud, vtkPoints* startPoints, bool distributed,
-    std::vector<std::uint32_t>& order, bool& indexOrder);
+    std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& positions);
 
   vtkPointSetSurfaceProjection(const vtkPointSetSurfaceProjection&) = delete;
   void operator=(const vtkPointSetSurfaceProjection&) = delete;

@@ -40,8 +40,9 @@ TEST(PointIndex, SkipsNonFinitePointsAndMapsIds)
   EXPECT_NEAR(nn.second, 0.01, 1e-12);
 }
 
-// Truth: visitingOrder() lists every input index exactly once, the indexed points first (in the
-// index's own order) and the skipped non-finite ones last, ascending.
+// Truth: visitingOrder() visits every indexed point once, in spatialOrder() of the index's points,
+// and lists every input index exactly once: each visited point's own id, then the skipped
+// non-finite ones, ascending.
 TEST(PointIndex, VisitingOrderCoversEveryInputOnce)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -51,14 +52,15 @@ TEST(PointIndex, VisitingOrderCoversEveryInputOnce)
     input.emplace_back(std::cos(0.37 * i) * i, std::sin(0.37 * i) * i, (i % 7 == 3) ? nan : 0.01 * i);
   }
   PointIndex index(input, 3);
-  const std::vector<std::uint32_t> order = index.visitingOrder();
-  ASSERT_EQ(order.size(), input.size());
+  const PointIndex::VisitingOrder order = index.visitingOrder();
+  EXPECT_EQ(order.positions, spatialOrder(index.points()));
+  ASSERT_EQ(order.ids.size(), input.size());
   for (std::size_t k = 0; k < index.size(); ++k)
   {
-    EXPECT_EQ(order[k], index.originalId(k));
+    EXPECT_EQ(order.ids[k], index.originalId(order.positions[k]));
   }
-  EXPECT_TRUE(std::is_sorted(order.begin() + static_cast<std::ptrdiff_t>(index.size()), order.end()));
-  std::vector<std::uint32_t> sorted(order);
+  EXPECT_TRUE(std::is_sorted(order.ids.begin() + static_cast<std::ptrdiff_t>(index.size()), order.ids.end()));
+  std::vector<std::uint32_t> sorted(order.ids);
   std::sort(sorted.begin(), sorted.end());
   for (std::size_t i = 0; i < sorted.size(); ++i)
   {

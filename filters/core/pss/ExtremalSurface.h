@@ -141,8 +141,8 @@ bool forEachStart(const std::vector<Vec3>& starts, const ParallelLoop& loop,
 
 /**
  * forEachStart with the visiting order given: @p order holds every start index once (e.g.
- * spatialOrder(starts), or PointIndex::visitingOrder() when the starts are the indexed cloud,
- * which needs neither a copy of the points nor a sort).
+ * spatialOrder(starts), or PointIndex::visitingOrder()'s ids when the starts are the indexed
+ * cloud, which needs no copy of the points).
  */
 bool forEachInOrder(const std::vector<std::uint32_t>& order, const ParallelLoop& loop,
   const std::function<void(std::size_t, Workspace&)>& work);

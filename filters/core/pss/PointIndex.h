@@ -47,9 +47,20 @@ public:
   /// Index in the constructor's input of indexed point @p i.
   std::size_t originalId(std::size_t i) const { return OriginalIds[i]; }
 
-  /// Every index of the constructor's input once: the indexed points in leaf order (neighbours
-  /// together, as in spatialOrder()), then the skipped ones in ascending order.
-  std::vector<std::uint32_t> visitingOrder() const;
+  /// An order to visit the indexed cloud's own points in, neighbours together.
+  struct VisitingOrder
+  {
+    /// Every position in points() once, in spatialOrder() of points().
+    std::vector<std::uint32_t> positions;
+    /// Every index of the constructor's input once: originalId() of each position above, then
+    /// the skipped points in ascending order.
+    std::vector<std::uint32_t> ids;
+  };
+  /// The Morton order, not the leaf order: within a leaf the tree's partitioning leaves points in
+  /// no order, and projections visited leaf by leaf fetched candidates twice as often (the bunny:
+  /// 0.56 fetches per point against 0.26). Computed on @p threads threads (0 = all cores), the
+  /// same for every count.
+  VisitingOrder visitingOrder(int threads = 1) const;
 
   /// Centroid and axis-aligned bounds of the indexed points (zero when empty).
   const Vec3& centroid() const { return Centroid; }
@@ -211,6 +222,10 @@ std::vector<std::uint32_t> spatialOrder(const std::vector<Vec3>& points, int thr
 
 /// True when all three coordinates are finite.
 bool isFinite(const Vec3& x);
+
+/// The bounds (lo, hi) of the points whose coordinates are all finite; +inf and -inf when there is
+/// none. Runs on @p threads threads (0 = all cores), the same bounds for every count.
+std::pair<Vec3, Vec3> finiteBounds(const std::vector<Vec3>& points, int threads = 1);
 
 /**
  * 2 when every finite point has the same z (to 1e-12 of the cloud's extent), else 3: the rule
