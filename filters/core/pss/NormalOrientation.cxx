@@ -173,9 +173,12 @@ std::vector<Vec3> estimateOrientedNormals(const PointIndex& index, const Surface
   const std::size_t n = index.size();
   params.validate();
   std::vector<Vec3> normals(n, Vec3::Zero());
+  // In Morton order, so that consecutive fits share candidate fetches (PointIndex::visitingOrder).
+  const std::vector<std::uint32_t> order = spatialOrder(index.points(), threads);
   parallelFor(n, threads, [&](std::size_t begin, std::size_t end, Workspace& ws) {
-    for (std::size_t i = begin; i < end; ++i)
+    for (std::size_t k = begin; k < end; ++k)
     {
+      const std::uint32_t i = order[k];
       const Direction d = centreOfMassNormal(index, params, index.point(i), ws);
       normals[i] = d.defined ? d.n : Vec3::Zero();
     }
