@@ -386,7 +386,7 @@ TEST(AdaptiveScale, SpreadOfLargeCloudsIsMeasuredOnASample)
     }
   };
   std::vector<Vec3> even;
-  patch(even, 0.0, 1040, 1.0); // 1,081,600 points
+  patch(even, 0.0, 520, 1.0); // 270,400 points
   ASSERT_GT(even.size(), ScaleSpreadSampledAbove);
   const PointIndex evenIndex(even, 3, 2);
   const double evenSpread = estimateScaleSpread(evenIndex, 10, 2, 2);
@@ -395,8 +395,8 @@ TEST(AdaptiveScale, SpreadOfLargeCloudsIsMeasuredOnASample)
   EXPECT_EQ(evenSpread, estimateScaleSpread(evenIndex, 10, 2, 1)) << "the same for every thread count";
 
   std::vector<Vec3> mixed;
-  patch(mixed, 0.0, 800, 1.0);     // 640,000 points, spacing 1
-  patch(mixed, 1000.0, 700, 3.0);  // 490,000 points, spacing 3: the 90th percentile is here
+  patch(mixed, 0.0, 400, 1.0);    // 160,000 points, spacing 1
+  patch(mixed, 1000.0, 350, 3.0); // 122,500 points, spacing 3: the 90th percentile is here
   ASSERT_GT(mixed.size(), ScaleSpreadSampledAbove);
   const PointIndex mixedIndex(mixed, 3, 2);
   const double sampled = estimateScaleSpread(mixedIndex, 10, 2, 2);

@@ -285,8 +285,11 @@ std::vector<double> estimateLocalSpacings(const PointIndex& index, std::size_t k
 /// there is none). The automatic scale mode compares it to a threshold (docs/paper.md).
 double scaleSpread(const std::vector<double>& scales);
 
-/// Clouds above this many points have their scales' spread measured on a sample.
-constexpr std::size_t ScaleSpreadSampledAbove = std::size_t{ 1 } << 20;
+/// Clouds above this many points have their scales' spread measured on a sample. The sample
+/// costs about 0.1 s whatever the cloud, every point's scale about 1 us a point on 2 threads: at
+/// 10^6 points the index stage took 0.37 s against 1.14 s, the spread 1.36 either way (the
+/// bunny's scans, 362,272 points: 0.16 against 0.36 s, spread 1.42 against 1.41).
+constexpr std::size_t ScaleSpreadSampledAbove = std::size_t{ 1 } << 18;
 /// How many evenly spread points (in index order) that sample holds.
 constexpr std::size_t ScaleSpreadSamples = 4096;
 
