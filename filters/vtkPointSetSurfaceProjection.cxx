@@ -197,7 +197,7 @@ int vtkPointSetSurfaceProjection::RequestData(
   }
   std::vector<std::uint32_t> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0u);
-  std::vector<std::uint32_t> positions; // in the index, of the starts in order: when they are its cloud
+  std::vector<std::uint32_t> positions; // where each start of order sits in the index, when they are its cloud
   const bool ordered =
     this->OrderStartPoints(starts, cloud, startPoints, run.GetController() != nullptr, order, positions);
   if (!ordered && !run.HasGhosts())
@@ -234,7 +234,7 @@ int vtkPointSetSurfaceProjection::RequestData(
       pss::forEachPosition(ks.size(), pss_vtk::SMPLoop(this), [&](std::size_t position, pss::Workspace& ws) {
         const vtkIdType i = static_cast<vtkIdType>(ks[position]);
         double start[3];
-        if (fromIndex && position < positions.size())
+        if (fromIndex && position < positions.size()) // after them: the skipped non-finite starts
         {
           const pss::Vec3& p = index.point(positions[position]);
           std::copy(p.data(), p.data() + 3, start);
