@@ -321,16 +321,18 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   // The plane procedure needs n(x) and c(x) - x at every iterate; planeFit gets both from one
   // neighbourhood. Each iterate's fit starts from what the previous one left in memory.
   Vec3 centroid = Vec3::Zero();
+  double contraction = std::numeric_limits<double>::quiet_NaN();
   DirectionMemory memory;
-  auto fitAt = [&](const Vec3& p) {
-    return plane ? s.planeFit(p, centroid, memory, ws) : s.directionNear(p, memory, ws);
+  auto fitAt = [&](const Vec3& p, double* slope = nullptr) {
+    return plane ? s.planeFit(p, centroid, memory, ws, slope) : s.directionNear(p, memory, ws);
   };
   Vec3 fitted = x; // where dir was fitted
-  Direction dir = fitAt(x);
+  Direction dir = fitAt(x, &contraction);
   res.startDirection = dir;
   res.reason = StopReason::MaxIterations;
   ExtremumType lastType = ExtremumType::None;
   Vec3 previousStep = Vec3::Zero();
+  Vec3 previousPlainStep = Vec3::Zero(); // t n, before the extrapolation
   for (int it = 0;; ++it)
   {
     if (!dir.defined)
@@ -348,20 +350,19 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
     {
       // Move x onto the plane through c(x) with normal n(x): the zero set of <n, x - c>.
       t = dir.n.dot(centroid);
-      // The iteration contracts linearly (each step a fraction r of the last, r ~ 2 sigma^2 / h^2
-      // for noise sigma along n). While it does, step to the limit of the geometric series,
-      // t / (1 - r) (Aitken's extrapolation): the fixed points are the same, reached in fewer
-      // iterations.
+      // The iteration contracts linearly: a step onto the plane leaves a fraction r of the
+      // distance e to the fixed point along n (t = (1 - r) e; r ~ 2 sigma^2 / h^2 for noise
+      // sigma along n), so t / (1 - r) steps onto the fixed point itself: the same fixed
+      // points in fewer iterations. The first step takes r from the fit (planeFit's
+      // contraction), the later ones from how much the last move changed t (a secant).
       move = t;
-      const double last = previousStep.squaredNorm();
-      if (last > 0.0)
+      const double moved = dir.n.dot(previousStep);
+      const double r = moved != 0.0 ? 1.0 - (dir.n.dot(previousPlainStep) - t) / moved : contraction;
+      if (r > 0.0 && r < 0.5)
       {
-        const double r = t * dir.n.dot(previousStep) / last;
-        if (r > 0.0 && r < 0.5)
-        {
-          move = t / (1.0 - r);
-        }
+        move = t / (1.0 - r);
       }
+      previousPlainStep = t * dir.n;
     }
     else
     {

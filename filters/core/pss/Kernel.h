@@ -188,6 +188,12 @@ Vec3 localScaleGradient(const Neighbourhood& nb);
 /// c(y) - y, where c(y) = sum_i theta_N(y, p_i) p_i is the weighted centre of mass.
 Vec3 centroidOffset(const Neighbourhood& nb);
 
+/// How fast the centre of mass follows y along a unit vector a: d<a, c(y + s a)>/ds at s = 0,
+/// which is 2 Cov_w(z, k z) for z_i = <a, p_i - y> and k_i = 1 / h_i^2 (1 / h^2 with one h),
+/// the derivative of the Gaussian weights (2 sigma^2 / h^2 for a variance sigma^2 along a). A
+/// step onto the plane through c along a leaves this fraction of the distance to its fixed point.
+double centroidContraction(const Neighbourhood& nb, const Vec3& a);
+
 /// sum_i w_i s_i^k for k = 1..4 with s_i = <a, p_i - y> (shifted weights): the moments along a
 /// line that e(y + t a, a) and its derivatives in t are built from, in one pass.
 struct LineMoments

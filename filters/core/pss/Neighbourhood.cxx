@@ -261,6 +261,16 @@ Vec3 centroidOffset(const Neighbourhood& nb)
   return nb.moment / nb.weightSum;
 }
 
+double centroidContraction(const Neighbourhood& nb, const Vec3& a)
+{
+  const auto z = a.x() * nb.x() + a.y() * nb.y() + a.z() * nb.z();
+  const double mean = (nb.w() * z).sum() / nb.weightSum;
+  // Cov(z, k z) = E[(z - mean) k z]: centred, so no difference of large sums.
+  const double sum =
+    nb.scaled ? (nb.w() * (z - mean) * nb.k() * z).sum() : nb.invH2 * (nb.w() * (z - mean) * z).sum();
+  return 2.0 * sum / nb.weightSum;
+}
+
 // sum_i w_i (p_i - y - m)(p_i - y - m)^T: the six distinct entries in one pass over the
 // neighbours (the padding after the last one weighs 0).
 Mat3 weightedScatter(const Neighbourhood& nb, const Vec3& m)

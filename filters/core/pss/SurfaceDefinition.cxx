@@ -4,6 +4,7 @@
 #include "pss/VariantCatalog.h"
 #include "pss/Workspace.h"
 
+#include <limits>
 #include <stdexcept>
 
 namespace pss
@@ -61,9 +62,14 @@ double SurfaceDefinition::energy(const Vec3& y, const Vec3& a, Workspace& ws) co
   return Energies->value(y, a, ws);
 }
 
-Direction SurfaceDefinition::planeFit(const Vec3& x, Vec3& offset, DirectionMemory& memory, Workspace& ws) const
+Direction SurfaceDefinition::planeFit(
+  const Vec3& x, Vec3& offset, DirectionMemory& memory, Workspace& ws, double* contraction) const
 {
   const DirectionFit fit = Directions->fit(x, memory, ws);
+  if (contraction)
+  {
+    *contraction = std::numeric_limits<double>::quiet_NaN();
+  }
   if (fit.hasStep)
   {
     offset = fit.step;
@@ -76,6 +82,10 @@ Direction SurfaceDefinition::planeFit(const Vec3& x, Vec3& offset, DirectionMemo
     nb = &ws.local;
   }
   offset = centroidOffset(*nb);
+  if (contraction && fit.direction.defined)
+  {
+    *contraction = centroidContraction(*nb, fit.direction.n);
+  }
   return fit.direction;
 }
 

@@ -119,8 +119,13 @@ public:
    * gather; for the others x's neighbourhood is gathered once more. @p memory as in
    * directionNear. For APSS and RIMLS the offset is the move along n onto their own local fit
    * (DirectionFit::step): the plane procedure is then their usual projection.
+   *
+   * @p contraction, when given, receives the fraction of x's distance to the plane procedure's
+   * fixed point (along n) that the step onto the plane leaves (centroidContraction; NaN for
+   * APSS and RIMLS, whose step is not onto that plane).
    */
-  Direction planeFit(const Vec3& x, Vec3& centroidOffset, DirectionMemory& memory, Workspace& ws) const;
+  Direction planeFit(const Vec3& x, Vec3& centroidOffset, DirectionMemory& memory, Workspace& ws,
+    double* contraction = nullptr) const;
 
   const PointIndex& index() const { return Index; }
   const SurfaceParameters& parameters() const { return Params; }
