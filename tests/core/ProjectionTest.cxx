@@ -255,3 +255,48 @@ TEST(ProjectionSphere, IntegralReportsTheFullStability)
   std::cout << "[ estimate ] largest |estimated - full| stability at the end points: " << largestEstimateError << "\n";
   EXPECT_GT(largestEstimateError, 1e-2) << "the estimate is too close to the full search for this test to tell them apart";
 }
+
+// Truth: two parallel lattice sheets z = +-a (the same xy lattice) around y = (0, 0, s). Both sheets
+// share each column's tangential weight, so the centre of mass sits at a tanh(2 a s / h^2) along z
+// and follows y at the rate d/ds = (2 a^2 / h^2) / cosh^2(2 a s / h^2): centroidContraction at
+// s = 0 and off the mid-plane, with one h and with the same h as every point's own scale.
+// Then the plane procedure from 0.4 h above and below: the fixed point is the mid-plane z = 0,
+// and each plain step would leave r = 2 a^2 / h^2 = 0.18 of the distance (eight steps to 1e-6 h);
+// dividing by 1 - r gets there in at most four fits.
+TEST(ProjectionSheets, CentroidContractionAndPlaneSteps)
+{
+  const double h = 1.0;
+  const double a = 0.3 * h;
+  std::vector<Vec3> pts;
+  for (const Vec3& p : planeCloud(6.0 * h, 0.1 * h))
+  {
+    pts.push_back(p + Vec3(0, 0, a));
+    pts.push_back(p - Vec3(0, 0, a));
+  }
+  PointIndex index(pts, 3);
+  PointIndex scaled(pts, 3);
+  scaled.setScales(std::vector<double>(pts.size(), h));
+  Workspace ws;
+  for (const double s : { 0.0, 0.1 * h, -0.25 * h })
+  {
+    const double u = 2.0 * a * s / (h * h);
+    const double truth = 2.0 * a * a / (h * h) / (std::cosh(u) * std::cosh(u));
+    for (const PointIndex* idx : { &index, &scaled })
+    {
+      Neighbourhood nb;
+      gatherNeighbourhood(*idx, params(h), Vec3(0.0, 0.0, s), nb, ws);
+      EXPECT_NEAR(centroidContraction(nb, Vec3::UnitZ()), truth, 1e-5 * truth)
+        << "s = " << s << (idx == &scaled ? " (a scale per point)" : "");
+    }
+  }
+  auto com = makeSurface(Variant::CenterOfMass, index, params(h));
+  ProjectionOptions opt;
+  opt.procedure = Procedure::Plane;
+  for (const Vec3& start : { Vec3(0.03, -0.02, 0.4), Vec3(0.51, 0.26, -0.4) })
+  {
+    const ProjectionResult r = project(*com, start, opt, ws);
+    ASSERT_EQ(r.reason, StopReason::Converged);
+    EXPECT_LT(std::abs(r.point.z()), 1e-5 * h) << "from " << start.transpose();
+    EXPECT_LE(r.iterations, 4) << "from " << start.transpose();
+  }
+}
