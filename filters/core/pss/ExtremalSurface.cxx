@@ -323,8 +323,8 @@ ProjectionResult project(const SurfaceDefinition& s, const Vec3& startIn, const 
   Vec3 centroid = Vec3::Zero();
   double contraction = std::numeric_limits<double>::quiet_NaN();
   DirectionMemory memory;
-  auto fitAt = [&](const Vec3& p, double* slope = nullptr) {
-    return plane ? s.planeFit(p, centroid, memory, ws, slope) : s.directionNear(p, memory, ws);
+  auto fitAt = [&](const Vec3& p, double* contractionOut = nullptr) {
+    return plane ? s.planeFit(p, centroid, memory, ws, contractionOut) : s.directionNear(p, memory, ws);
   };
   Vec3 fitted = x; // where dir was fitted
   Direction dir = fitAt(x, &contraction);
