@@ -268,17 +268,25 @@ CompactionArrays<CompactedArrays<Normals, Scaled>> compactionArrays(
   const Candidates& c, const double* pk, const double* ph, Neighbourhood& nb)
 {
   CompactionArrays<CompactedArrays<Normals, Scaled>> a{};
-  const double* sources[9] = { c.px, c.py, c.pz, c.sq, c.nx, c.ny, c.nz, pk, ph };
-  double* targets[9] = { nb.dx.data(), nb.dy.data(), nb.dz.data(), nb.sqDist.data(), nb.nx.data(), nb.ny.data(),
-    nb.nz.data(), nb.inverseSqScale.data(), nb.pointScale.data() };
   int k = 0;
-  for (int j = 0; j < 9; ++j)
+  auto add = [&](const double* source, double* target) {
+    a.source[k] = source;
+    a.target[k++] = target;
+  };
+  add(c.px, nb.dx.data());
+  add(c.py, nb.dy.data());
+  add(c.pz, nb.dz.data());
+  add(c.sq, nb.sqDist.data());
+  if constexpr (Normals)
   {
-    if ((j < 4) || (j < 7 ? Normals : Scaled))
-    {
-      a.source[k] = sources[j];
-      a.target[k++] = targets[j];
-    }
+    add(c.nx, nb.nx.data());
+    add(c.ny, nb.ny.data());
+    add(c.nz, nb.nz.data());
+  }
+  if constexpr (Scaled)
+  {
+    add(pk, nb.inverseSqScale.data());
+    add(ph, nb.pointScale.data());
   }
   return a;
 }
